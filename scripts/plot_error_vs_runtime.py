@@ -1,0 +1,46 @@
+#!/usr/bin/python3
+"""Plot |relative error| against wall time, one line per quantity.
+
+usage: plot_error_vs_runtime.py CSV PNG [TITLE]
+CSV columns: level,size,cores,wall_s,quantity,value,reference,rel_error
+"""
+import csv
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def main():
+    if len(sys.argv) < 3:
+        sys.exit("usage: plot_error_vs_runtime.py CSV PNG [TITLE]")
+    src, png = sys.argv[1], sys.argv[2]
+    title = sys.argv[3] if len(sys.argv) > 3 else src
+    series = {}
+    with open(src, newline="") as f:
+        for row in csv.DictReader(f):
+            q = row["quantity"]
+            series.setdefault(q, []).append(
+                (float(row["wall_s"]), abs(float(row["rel_error"])), row["level"], row["size"]))
+    if not series:
+        sys.exit(f"error: {src} has no rows")
+    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    for q, pts in sorted(series.items()):
+        pts.sort()
+        ax.loglog([p[0] for p in pts], [max(p[1], 1e-16) for p in pts], "o-", label=q)
+        for p in pts:
+            ax.annotate(f"{p[2]} ({p[3]})", (p[0], max(p[1], 1e-16)), fontsize=7,
+                        textcoords="offset points", xytext=(4, 4))
+    ax.set_xlabel("wall time [s]")
+    ax.set_ylabel("|relative error|")
+    ax.set_title(f"{title}: error against run time")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(png, dpi=120)
+
+
+if __name__ == "__main__":
+    main()
