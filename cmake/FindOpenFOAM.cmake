@@ -15,10 +15,9 @@ find_library(OpenFOAM_CORE_LIBRARY OpenFOAM PATHS /usr/lib /usr/lib/openfoam/lib
 get_filename_component(OpenFOAM_LIBRARY_DIR "${OpenFOAM_CORE_LIBRARY}" DIRECTORY)
 
 set(_of_inc_rel
-  OpenFOAM OSspecific/POSIX finiteVolume meshTools fileFormats surfMesh triSurface
+  OpenFOAM OSspecific/POSIX finiteVolume meshTools fileFormats surfMesh
   dynamicMesh dynamicFvMesh fvMotionSolver sampling functionObjects/forces
   TurbulenceModels/turbulenceModels TurbulenceModels/incompressible
-  transportModels transportModels/incompressible/singlePhaseTransportModel
   transportModels/incompressible)
 set(OpenFOAM_INCLUDE_DIRS "")
 set(_of_missing "")
