@@ -1,0 +1,147 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+/*---------------------------------------------------------------------------*\
+Application
+    fluid-app
+
+Description
+    Steady incompressible SIMPLE/SIMPLEC solver with mesh motion, the fluid
+    side of the FSI toolkit (DESIGN.md section 5). Kinematic pressure; flow
+    model from constant/turbulenceProperties (laminar by default); mesh motion
+    from constant/dynamicMeshDict (dynamicMotionSolverFvMesh +
+    displacementLaplacian). Coupling settings in system/fsiDict.
+
+    Modes (fsiDict 'mode', or the command-line switches):
+      -rigid       no coupling: solve steady to convergence, log and write forces
+      -prescribed  prescribed interface motion from fsiDict 'prescribed' (tests)
+      (default)    coupled with solid-app through fsi::comm
+
+Usage
+    fluid-app [-rigid | -prescribed] [-parallel] [-case DIR]
+\*---------------------------------------------------------------------------*/
+
+#include "fvCFD.H"
+#include "dynamicFvMesh.H"
+#include "singlePhaseTransportModel.H"
+#include "turbulentTransportModel.H"
+#include "fluidSolidCoupling.H"
+
+int main(int argc, char* argv[])
+{
+    argList::addNote
+    (
+        "Steady incompressible SIMPLE solver with mesh motion, coupled to solid-app."
+    );
+    argList::addBoolOption("rigid", "Uncoupled: solve steady to convergence and write forces");
+    argList::addBoolOption("prescribed", "Prescribed interface motion from system/fsiDict (tests)");
+
+    #include "setRootCase.H"
+    #include "createTime.H"
+    #include "createDynamicFvMesh.H"
+    #include "createFields.H"
+    #include "initContinuityErrs.H"
+
+    turbulence->validate();
+
+    fluidSolidCoupling coupling(mesh, U, p, phi, turbulence());
+
+    word mode = coupling.dict().getOrDefault<word>("mode", "coupled");
+    if (args.found("rigid"))
+    {
+        mode = "rigid";
+    }
+    if (args.found("prescribed"))
+    {
+        mode = "prescribed";
+    }
+
+    // One SIMPLE iteration per time increment (time = iteration counter).
+    // Stops on the absolute residualControl of fvSolution::SIMPLE, or on the
+    // relative drop of fsiDict, and (optionally) on force convergence.
+    bool solveFlow = true;
+    auto steadySolve = [&](const fluidSolidCoupling::SolveControls& ctrl)
+    {
+        fluidSolidCoupling::SolveResult result;
+        if (!solveFlow)
+        {
+            result.converged = true;
+            return result;
+        }
+        scalar firstU = -1, firstP = -1;
+        vector previousForce(Zero);
+        for (label iter = 1; iter <= ctrl.maxIterations; ++iter)
+        {
+            ++runTime;
+            scalar residualU = 0;
+            scalar residualP = 0;
+            p.storePrevIter();
+            {
+                #include "UEqn.H"
+                #include "pEqn.H"
+            }
+            laminarTransport.correct();
+            turbulence->correct();
+
+            if (iter == 1)
+            {
+                firstU = residualU;
+                firstP = residualP;
+            }
+            result.iterations = iter;
+            result.residualU = residualU;
+            result.residualP = residualP;
+
+            const bool dropOk =
+                ctrl.residualDrop > 0
+             && residualU <= ctrl.residualDrop*firstU
+             && residualP <= ctrl.residualDrop*firstP;
+            const bool absoluteOk = residualU <= tolU && residualP <= tolP;
+            bool forceOk = true;
+            if (ctrl.forceTolerance > 0)
+            {
+                const vector F = coupling.interfaceForce();
+                forceOk =
+                    iter > 1 && mag(F - previousForce) <= ctrl.forceTolerance*mag(F);
+                previousForce = F;
+            }
+            if ((dropOk || absoluteOk) && forceOk)
+            {
+                result.converged = true;
+                Info<< "SIMPLE converged in " << iter << " iterations" << nl << endl;
+                break;
+            }
+        }
+        return result;
+    };
+
+    int rc = 0;
+    if (mode == "rigid")
+    {
+        rc = coupling.runRigid(steadySolve);
+    }
+    else if (mode == "prescribed")
+    {
+        const dictionary& pd = coupling.dict().subDict("prescribed");
+        solveFlow = pd.getOrDefault<bool>("solveFlow", false);
+        rc = coupling.runCoupled(steadySolve, fluidSolidCoupling::prescribedTransport(pd));
+    }
+    else if (mode == "coupled")
+    {
+        FatalErrorInFunction
+            << "coupled mode needs the fsi::comm transport (not built in yet); "
+            << "use -rigid or -prescribed" << exit(FatalError);
+    }
+    else
+    {
+        FatalIOErrorInFunction(coupling.dict())
+            << "system/fsiDict: mode must be coupled, rigid or prescribed, got "
+            << mode << exit(FatalIOError);
+    }
+
+    runTime.printExecutionTime(Info);
+    Info<< "End\n" << endl;
+    if (rc != 0)
+    {
+        UPstream::exit(rc);
+    }
+    return 0;
+}
