@@ -1,0 +1,106 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Fixed-point acceleration of the interface displacement within one time level (after preCICE
+// acceleration::Acceleration). Vectors only: no MPI, no FE, no YAML. The driver calls
+//   beginLevel(); loop { u = accelerator.update(u, solve(u)); test convergence } endLevel();
+// Strategies by keyword (AcceleratorParameters::type): "constant", "aitken", "iqn-ils".
+#pragma once
+
+#include <Eigen/Core>
+
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace fsi::acceleration
+{
+
+// What a strategy carries between levels, for restart. Plain data, written by the io layer.
+struct AcceleratorState
+{
+    std::string type;          // keyword of the strategy that wrote it
+    std::vector<long> sizes;   // strategy-specific layout (see each strategy)
+    std::vector<double> values;
+};
+
+class Accelerator
+{
+public:
+    virtual ~Accelerator() = default;
+
+    virtual std::string name() const = 0;
+
+    // Start of a time level. Keeps what the strategy carries over between levels (Aitken omega,
+    // IQN-ILS columns of converged levels); drops the iteration data of an unfinished level.
+    virtual void beginLevel() = 0;
+
+    // Given the previous iterate u_{i-1} (what was sent to the solvers) and the solver output
+    // u_hat_i, return the next iterate u_i. Residual r_i = u_hat_i - u_{i-1}.
+    // Pre: beginLevel() called; both vectors of the same length n, fixed within a level (and
+    // across levels for IQN-ILS reuse). Unit: whatever the driver uses (m), consistently.
+    virtual Eigen::VectorXd update(const Eigen::VectorXd& previousIterate,
+                                   const Eigen::VectorXd& solverOutput) = 0;
+
+    // The level has converged: commit the data reused by later levels.
+    virtual void endLevel() = 0;
+
+    // Relaxation factor used by the last update (for the log); NaN when not meaningful
+    // (a quasi-Newton step).
+    virtual double lastRelaxation() const { return std::numeric_limits<double>::quiet_NaN(); }
+
+    // What the last update did that the log should say (a clamp, filtered columns, a fallback);
+    // empty when nothing noteworthy. The library never prints.
+    const std::string& lastNote() const { return note_; }
+
+    // Restart: state after endLevel() (between levels). loadState throws std::runtime_error
+    // when the state was written by another type or does not fit.
+    virtual AcceleratorState saveState() const { return {name(), {}, {}}; }
+    virtual void loadState(const AcceleratorState& state) { checkStateType(state); }
+
+protected:
+    void checkStateType(const AcceleratorState& state) const;
+    std::string note_;
+};
+
+// constant: u_i = u_{i-1} + omega r_i.
+struct ConstantParameters
+{
+    double relaxation = std::numeric_limits<double>::quiet_NaN(); // omega, required, (0, 2)
+    void validate() const;
+};
+
+// aitken: eq. 10 of the paper, see Aitken.hpp.
+struct AitkenParameters
+{
+    double initialRelaxation = std::numeric_limits<double>::quiet_NaN(); // omega_0, required
+    std::string initial = "reset"; // first iteration of a level: "reset" | "carry-over"
+    double maxRelaxation = 1.0;    // |omega| <= max_relaxation
+    double minRelaxation = 1e-3;   // |omega| >= min_relaxation; carry-over into [min, max]
+    void validate() const;
+};
+
+// iqn-ils: interface quasi-Newton with least-squares model (Degroote et al. 2009).
+struct IqnIlsParameters
+{
+    double initialRelaxation = std::numeric_limits<double>::quiet_NaN(); // omega_0, required
+    int maxColumns = 100;        // cap on columns (current + reused), oldest dropped first
+    int reuseLevels = 0;         // converged levels whose columns are reused (0 = none)
+    double filterTolerance = 1e-8; // QR filter epsilon, see QrFilter.hpp
+    std::string filter = "qr-column"; // "qr-column" (|R_ii| < eps |v_i|) | "qr-matrix" (eps ||R||)
+    void validate() const;
+};
+
+struct AcceleratorParameters
+{
+    std::string type = "aitken"; // "constant" | "aitken" | "iqn-ils"
+    ConstantParameters constant;
+    AitkenParameters aitken;
+    IqnIlsParameters iqnIls;
+    // Throws std::runtime_error, one line naming the key (acceleration.<key>) and the fix.
+    void validate() const;
+};
+
+std::unique_ptr<Accelerator> makeAccelerator(const AcceleratorParameters& params);
+
+} // namespace fsi::acceleration

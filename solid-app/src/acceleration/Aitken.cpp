@@ -1,0 +1,92 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "acceleration/Aitken.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+namespace fsi::acceleration
+{
+
+Aitken::Aitken(const AitkenParameters& params)
+    : params_(params), carryOver_(params.initial == "carry-over")
+{
+    params_.validate();
+}
+
+void Aitken::beginLevel()
+{
+    iteration_ = 0;
+    note_.clear();
+}
+
+double Aitken::clamp(double omega, const char* what)
+{
+    const double magnitude = std::fabs(omega);
+    double clamped = omega;
+    if (magnitude > params_.maxRelaxation)
+        clamped = std::copysign(params_.maxRelaxation, omega);
+    else if (magnitude < params_.minRelaxation)
+        clamped = std::copysign(params_.minRelaxation, omega);
+    if (clamped != omega)
+    {
+        char buffer[200];
+        std::snprintf(buffer, sizeof buffer,
+                      "aitken: %s omega %.4g clamped to %.4g (min_relaxation %.4g, "
+                      "max_relaxation %.4g)",
+                      what, omega, clamped, params_.minRelaxation, params_.maxRelaxation);
+        note_ = buffer;
+    }
+    return clamped;
+}
+
+Eigen::VectorXd Aitken::update(const Eigen::VectorXd& previousIterate,
+                               const Eigen::VectorXd& solverOutput)
+{
+    note_.clear();
+    Eigen::VectorXd residual = solverOutput - previousIterate;
+    if (iteration_ == 0)
+    {
+        if (carryOver_ && !std::isnan(levelOmega_))
+        {
+            // The carried factor is kept in [min_relaxation, max_relaxation] (positive).
+            omega_ = std::min(std::max(levelOmega_, params_.minRelaxation), params_.maxRelaxation);
+            if (omega_ != levelOmega_)
+                note_ = "aitken: carried-over omega " + std::to_string(levelOmega_) +
+                        " clamped to " + std::to_string(omega_) + " (min_relaxation " +
+                        std::to_string(params_.minRelaxation) + ", max_relaxation " +
+                        std::to_string(params_.maxRelaxation) + ")";
+        }
+        else
+            omega_ = params_.initialRelaxation;
+    }
+    else
+    {
+        const Eigen::VectorXd change = residual - previousResidual_;
+        const double denominator = change.squaredNorm();
+        if (denominator > 0.0 && std::isfinite(denominator))
+            omega_ = clamp(-omega_ * previousResidual_.dot(change) / denominator, "new");
+        else
+            note_ = "aitken: residual unchanged, omega kept at " + std::to_string(omega_);
+    }
+    ++iteration_;
+    previousResidual_ = std::move(residual);
+    return previousIterate + omega_ * previousResidual_;
+}
+
+void Aitken::endLevel() { levelOmega_ = omega_; }
+
+AcceleratorState Aitken::saveState() const { return {name(), {1}, {levelOmega_}}; }
+
+void Aitken::loadState(const AcceleratorState& state)
+{
+    checkStateType(state);
+    if (state.values.size() != 1)
+        throw std::runtime_error("acceleration: aitken restart state must hold 1 value, has " +
+                                 std::to_string(state.values.size()) +
+                                 "; the restart file is damaged or from another version");
+    levelOmega_ = state.values[0];
+}
+
+} // namespace fsi::acceleration

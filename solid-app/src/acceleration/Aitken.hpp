@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// aitken: dynamic relaxation by Aitken's delta^2 method, the paper's eq. 10. With the residual
+// of this update r_new = u_hat_i - u_{i-1}, the previous one r_prev and the previous factor
+// omega_prev (paper: r_{i+1}, r_i, omega_{i-1}):
+//   omega = -omega_prev r_prev^T (r_new - r_prev) / |r_new - r_prev|^2,  u_i = u_{i-1} + omega r_new
+// First update of a level: "reset" uses omega_0; "carry-over" uses the last omega of the
+// previous converged level clamped to [min_relaxation, max_relaxation] (omega_0 on the first
+// level). Every omega is clamped to min_relaxation <= |omega| <= max_relaxation, sign kept.
+// If r_new == r_prev (no information) omega_prev is kept. Each of these is told in lastNote().
+// Restart state: values = {last omega of the last converged level} (NaN before the first).
+#pragma once
+
+#include "acceleration/Accelerator.hpp"
+
+namespace fsi::acceleration
+{
+
+class Aitken final : public Accelerator
+{
+public:
+    explicit Aitken(const AitkenParameters& params);
+    std::string name() const override { return "aitken"; }
+    void beginLevel() override;
+    Eigen::VectorXd update(const Eigen::VectorXd& previousIterate,
+                           const Eigen::VectorXd& solverOutput) override;
+    void endLevel() override;
+    double lastRelaxation() const override { return omega_; }
+    AcceleratorState saveState() const override;
+    void loadState(const AcceleratorState& state) override;
+
+private:
+    double clamp(double omega, const char* what);
+    AitkenParameters params_;
+    bool carryOver_;
+    int iteration_ = 0;
+    double omega_ = std::numeric_limits<double>::quiet_NaN();
+    double levelOmega_ = std::numeric_limits<double>::quiet_NaN(); // last omega of last level
+    Eigen::VectorXd previousResidual_;
+};
+
+} // namespace fsi::acceleration

@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// Interface mapping between non-matching point clouds (solid wetted nodes <-> fluid patch
+// points / face centres). This layer knows point clouds and value arrays only: no MPI, no FE,
+// no YAML. The config layer fills MappingParameters; buildMapping() returns a ready operator.
+//
+// A mapping is the linear operator H (N_t x N_s) from source-point values to target-point values:
+//   consistent   (displacements): targetValues = H sourceValues        (per component)
+//   conservative (forces):        sourceValues = H^T targetValues      (per component)
+// For forces, build the mapping with source = solid wetted nodes and target = fluid face centres
+// and call applyConservative: total force is conserved exactly (H reproduces constants), total
+// moment too when H reproduces linear fields (both RBF kinds; not nearest-neighbour).
+#pragma once
+
+#include <Eigen/Core>
+
+#include <memory>
+#include <string>
+
+namespace fsi::mapping
+{
+
+// One row per point, coordinates x y z in metres.
+using PointCloud = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+// One row per point, one column per component (3 for displacement or force); any unit.
+using Values = Eigen::MatrixXd;
+
+// Base of all mapping strategies (after preCICE mapping::Mapping). Not thread-safe: apply*()
+// use internal workspace, so one object serves one thread.
+class Mapping
+{
+public:
+    virtual ~Mapping() = default;
+
+    // Keyword of the strategy ("nearest-neighbour", "rbf-thin-plate", "rbf-wendland-c2").
+    virtual std::string name() const = 0;
+
+    // Set-up (search trees, factorisations); the expensive part, done once per pair of meshes.
+    // Pre: source and target non-empty; coordinates in metres. Throws std::runtime_error on
+    // degenerate input (duplicate source points for RBF, support radius too small, ...).
+    virtual void compute(const PointCloud& source, const PointCloud& target) = 0;
+
+    // targetValues = H sourceValues. Pre: compute() done; sourceValues.rows() == sourceSize(),
+    // targetValues is sized targetSize() x sourceValues.cols() by the caller. No factorisation,
+    // and no heap allocation after the first call with a given column count.
+    virtual void applyConsistent(const Eigen::Ref<const Values>& sourceValues,
+                                 Eigen::Ref<Values> targetValues) const = 0;
+
+    // sourceValues = H^T targetValues (forces: target = fluid faces, source = solid nodes).
+    // Pre: targetValues.rows() == targetSize(); sourceValues sized sourceSize() x cols by caller.
+    virtual void applyConservative(const Eigen::Ref<const Values>& targetValues,
+                                   Eigen::Ref<Values> sourceValues) const = 0;
+
+    Eigen::Index sourceSize() const { return sourceSize_; }
+    Eigen::Index targetSize() const { return targetSize_; }
+
+protected:
+    Eigen::Index sourceSize_ = 0;
+    Eigen::Index targetSize_ = 0;
+};
+
+// Coefficients of rbf-wendland-c2: phi(r) = (1 - r/rho)^4_+ (4 r/rho + 1).
+struct WendlandParameters
+{
+    double supportRadius = 0.0; // rho [m]; a few source-node spacings (3..6 is typical)
+    void validate() const;      // throws: support_radius must be > 0
+};
+
+// Coefficients of rbf-thin-plate: phi(r) = r^2 log r, global and dense (O(N^3) set-up).
+struct ThinPlateParameters
+{
+    long maxSourcePoints = 10000; // refuse larger interfaces (memory ~ 16 N^2 bytes)
+    void validate() const;
+};
+
+struct MappingParameters
+{
+    // "nearest-neighbour" | "rbf-thin-plate" | "rbf-wendland-c2"
+    std::string type = "nearest-neighbour";
+    // checkOverlap(): max distance from a target point to the nearest source point, relative to
+    // the source interface size (bounding-box diagonal); larger means the meshes do not match.
+    double overlapTolerance = 0.1;
+    WendlandParameters wendland;
+    ThinPlateParameters thinPlate;
+
+    // Throws std::runtime_error, one line naming the key (mapping.<key>) and the fix.
+    void validate() const;
+};
+
+// Strategy object for params.type (validated), not yet computed.
+std::unique_ptr<Mapping> makeMapping(const MappingParameters& params);
+
+// validate + checkOverlap(source, target, params.overlapTolerance) + makeMapping + compute.
+std::unique_ptr<Mapping> buildMapping(const MappingParameters& params, const PointCloud& source,
+                                      const PointCloud& target);
+
+} // namespace fsi::mapping

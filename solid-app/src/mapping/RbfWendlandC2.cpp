@@ -1,0 +1,126 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "mapping/RbfWendlandC2.hpp"
+
+#include "mapping/KdTree.hpp"
+#include "mapping/RbfSupport.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace fsi::mapping
+{
+
+namespace
+{
+inline double wendlandC2(double rOverRho)
+{
+    const double a = 1.0 - rOverRho;
+    return a > 0.0 ? a * a * a * a * (4.0 * rOverRho + 1.0) : 0.0;
+}
+
+void resizeWorkspace(Eigen::MatrixXd& m, Eigen::Index rows, Eigen::Index cols)
+{
+    if (m.rows() != rows || m.cols() != cols)
+        m.resize(rows, cols);
+}
+
+// Triplets phi(|q_i - s_j| / rho) for all s_j within rho of q_i; lowerOnly keeps j <= i.
+// Returns the index of a query with no neighbour, or -1.
+Eigen::Index kernelTriplets(const KdTree& tree, const PointCloud& queries, double rho,
+                            bool lowerOnly, std::vector<Eigen::Triplet<double>>& triplets)
+{
+    std::vector<std::pair<Eigen::Index, double>> found;
+    for (Eigen::Index i = 0; i < queries.rows(); ++i)
+    {
+        tree.withinRadius(queries.row(i).data(), rho, found);
+        if (found.empty())
+            return i;
+        for (const auto& [j, d2] : found)
+            if (!lowerOnly || j <= i)
+                triplets.emplace_back(i, j, wendlandC2(std::sqrt(d2) / rho));
+    }
+    return -1;
+}
+} // namespace
+
+void RbfWendlandC2::compute(const PointCloud& source, const PointCloud& target)
+{
+    if (!(supportRadius_ > 0.0))
+        throw std::runtime_error("mapping rbf-wendland-c2: mapping.support_radius must be > 0 m");
+    detail::checkDistinctPoints(source, "rbf-wendland-c2");
+    const detail::Normalisation normalisation(source);
+    const PointCloud s = normalisation.apply(source), t = normalisation.apply(target);
+    const double rho = supportRadius_ / normalisation.scale;
+    const KdTree tree(s);
+
+    std::vector<Eigen::Triplet<double>> triplets;
+    triplets.reserve(static_cast<size_t>(s.rows()) * 16);
+    kernelTriplets(tree, s, rho, true, triplets);
+    Eigen::SparseMatrix<double> system(s.rows(), s.rows());
+    system.setFromTriplets(triplets.begin(), triplets.end());
+    systemNonZeros_ = 2 * system.nonZeros() - s.rows();
+    ldlt_.compute(system);
+    if (ldlt_.info() != Eigen::Success)
+        throw std::runtime_error("mapping rbf-wendland-c2: factorisation of the RBF matrix "
+                                 "failed; check for near-duplicate source points or change "
+                                 "mapping.support_radius");
+
+    triplets.clear();
+    const Eigen::Index lonely = kernelTriplets(tree, t, rho, false, triplets);
+    if (lonely >= 0)
+    {
+        char where[160];
+        const auto p = target.row(lonely);
+        std::snprintf(where, sizeof where, "target point %ld (%.4g %.4g %.4g) m",
+                      static_cast<long>(lonely), p(0), p(1), p(2));
+        throw std::runtime_error(std::string("mapping rbf-wendland-c2: ") + where +
+                                 " has no source point within mapping.support_radius " +
+                                 std::to_string(supportRadius_) +
+                                 " m; raise support_radius to a few solid node spacings");
+    }
+    evaluation_.resize(t.rows(), s.rows());
+    evaluation_.setFromTriplets(triplets.begin(), triplets.end());
+
+    const detail::LinearPolynomial polynomial(s, t);
+    sourceBasis_ = polynomial.sourceBasis;
+    targetBasis_ = polynomial.targetBasis;
+    sourceSize_ = s.rows();
+    targetSize_ = t.rows();
+}
+
+void RbfWendlandC2::applyConsistent(const Eigen::Ref<const Values>& sourceValues,
+                                    Eigen::Ref<Values> targetValues) const
+{
+    const Eigen::Index k = sourceValues.cols();
+    resizeWorkspace(polynomial_, sourceBasis_.cols(), k);
+    resizeWorkspace(residual_, sourceSize_, k);
+    resizeWorkspace(coefficients_, sourceSize_, k);
+    polynomial_.noalias() = sourceBasis_.transpose() * sourceValues;
+    residual_ = sourceValues;
+    residual_.noalias() -= sourceBasis_ * polynomial_;
+    coefficients_ = ldlt_.solve(residual_);
+    targetValues.noalias() = evaluation_ * coefficients_;
+    targetValues.noalias() += targetBasis_ * polynomial_;
+}
+
+void RbfWendlandC2::applyConservative(const Eigen::Ref<const Values>& targetValues,
+                                      Eigen::Ref<Values> sourceValues) const
+{
+    const Eigen::Index k = targetValues.cols();
+    resizeWorkspace(polynomial_, sourceBasis_.cols(), k);
+    resizeWorkspace(projected_, sourceBasis_.cols(), k);
+    resizeWorkspace(residual_, sourceSize_, k);
+    resizeWorkspace(coefficients_, sourceSize_, k);
+    residual_.noalias() = evaluation_.transpose() * targetValues;
+    coefficients_ = ldlt_.solve(residual_);
+    projected_.noalias() = sourceBasis_.transpose() * coefficients_;
+    polynomial_.noalias() = targetBasis_.transpose() * targetValues;
+    sourceValues = coefficients_;
+    sourceValues.noalias() -= sourceBasis_ * projected_;
+    sourceValues.noalias() += sourceBasis_ * polynomial_;
+}
+
+} // namespace fsi::mapping
