@@ -12,6 +12,8 @@ namespace fsi::material
 //   dS/dE = lambda C^-1 (x) C^-1 + 2 (mu - lambda ln J) C^-1 (.) C^-1  (symmetrised product)
 // lambda = K - 2G/3, mu = G. Reduces to Hooke at E -> 0. No history.
 // Throws InadmissibleDeformation if det C <= 0.
+// Note: dS/dE is not positive definite once ln J > mu/lambda (volumetric expansion beyond
+// ~mu/lambda, i.e. 2 % at nu = 0.49): factor the tangent as general symmetric, not SPD.
 class NeoHookean final : public Material
 {
 public:
