@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// How the two programs meet: chosen at run time from command-line flags.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace fsi::comm
+{
+
+enum class LaunchMode
+{
+    Port, // two separate mpiruns meeting through MPI_Open_port (needs an ompi-server)
+    Mpmd, // one `mpirun -np A fluid : -np B solid`; MPI_COMM_WORLD split by MPI_APPNUM
+};
+
+std::string toString(LaunchMode mode); // "port" | "mpmd"
+
+struct LaunchOptions
+{
+    LaunchMode mode = LaunchMode::Mpmd;
+    // Port mode: file the server (solid) writes its port name to and the client (fluid) reads.
+    // Relative paths are relative to the working directory (usually the case folder).
+    std::string portFile = "fsi-comm.port";
+    // Bound [s] of every blocking wait: peer messages, port file, connect/accept, MPMD split.
+    double timeoutSeconds = 600.0;
+};
+
+// Flags (both "--flag value" and "--flag=value"):
+//   --launch port|mpmd     (default mpmd)
+//   --port-file PATH       (default fsi-comm.port; port mode only)
+//   --comm-timeout SECONDS (default 600; > 0)
+// Recognised flags are removed from args; other arguments are left in order.
+// Throws std::runtime_error with a one-line message naming the flag and the fix.
+LaunchOptions parseLaunchOptions(std::vector<std::string>& args);
+
+// Same for main's argc/argv: removes the recognised flags in place (argv[argc] stays nullptr),
+// so that OpenFOAM's argList never sees them. argv[0] is kept.
+LaunchOptions parseLaunchOptions(int& argc, char** argv);
+
+// One line for --help texts.
+std::string launchOptionsUsage();
+
+} // namespace fsi::comm

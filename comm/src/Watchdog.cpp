@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "Watchdog.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <unistd.h>
+
+namespace fsi::comm::detail
+{
+
+Watchdog::Watchdog(double timeoutSeconds, std::string message, int exitCode)
+{
+    const auto limit = std::chrono::duration<double>(timeoutSeconds);
+    thread_ = std::thread(
+        [this, limit, exitCode, message = std::move(message)]
+        {
+            std::unique_lock<std::mutex> lock(mutex_);
+            if (done_.wait_for(lock, limit, [this] { return disarmed_; }))
+                return;
+            if (!message.empty())
+            {
+                const std::string line = "error: " + message + "\n";
+                std::fflush(stdout);
+                (void)!::write(STDERR_FILENO, line.data(), line.size());
+            }
+            ::_exit(exitCode);
+        });
+}
+
+Watchdog::~Watchdog()
+{
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        disarmed_ = true;
+    }
+    done_.notify_all();
+    thread_.join();
+}
+
+} // namespace fsi::comm::detail
