@@ -1,0 +1,51 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Point clouds for the mapping tests: the same surfaces sampled differently on the two sides.
+#pragma once
+
+#include "mapping/Mapping.hpp"
+
+#include <cmath>
+
+namespace fsi::mapping::test
+{
+
+// Cylinder of radius 0.5 m and length 1 m, axis along z through (1, -2, 0.5) m (off the origin
+// on purpose). nTheta x nZ points; theta shifted by thetaShift of a step, z from zLo to zHi.
+inline PointCloud cylinder(int nTheta, int nZ, double thetaShift, double zLo, double zHi)
+{
+    const double pi = std::acos(-1.0);
+    PointCloud p(nTheta * nZ, 3);
+    for (int j = 0; j < nZ; ++j)
+        for (int i = 0; i < nTheta; ++i)
+        {
+            const double theta = 2.0 * pi * (i + thetaShift) / nTheta;
+            const double z = nZ == 1 ? zLo : zLo + (zHi - zLo) * j / (nZ - 1);
+            p.row(j * nTheta + i) << 1.0 + 0.5 * std::cos(theta), -2.0 + 0.5 * std::sin(theta),
+                z;
+        }
+    return p;
+}
+
+// Solid side: nTheta x nTheta/2 nodes, ends included.
+inline PointCloud solidCylinder(int nTheta) { return cylinder(nTheta, nTheta / 2 + 1, 0.0, 0.0, 1.0); }
+
+// Fluid side: a different sampling, 1.5x denser, rotated by 0.37 of its step, axially at
+// the centres of 3 nTheta / 4 equal cells (faces centres-like). Pre: nTheta multiple of 4.
+// Self-similar under doubling of nTheta (clean convergence rates).
+inline PointCloud fluidCylinder(int nTheta)
+{
+    const int m = 3 * nTheta / 2, mz = 3 * nTheta / 4;
+    return cylinder(m, mz, 0.37, 0.5 / mz, 1.0 - 0.5 / mz);
+}
+
+// Flat plate z = 0.2 m, [0, lx] x [0, ly], nx x ny nodes shifted by (dx, dy).
+inline PointCloud plate(int nx, int ny, double lx, double ly, double dx, double dy)
+{
+    PointCloud p(nx * ny, 3);
+    for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i)
+            p.row(j * nx + i) << dx + lx * i / (nx - 1), dy + ly * j / (ny - 1), 0.2;
+    return p;
+}
+
+} // namespace fsi::mapping::test
