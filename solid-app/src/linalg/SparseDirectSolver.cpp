@@ -285,6 +285,9 @@ void SparseDirectSolver::factorize()
                 " null pivots); check the clamped boundary (rigid-body modes)");
         ++factorizationCount_;
         negativePivots_ = options_.symmetric ? handle_->infog(12) : 0;
+        // INFOG(29) < 0 means millions of entries
+        factorEntries_ = handle_->infog(29) >= 0 ? handle_->infog(29)
+                                                 : -1000000LL * handle_->infog(29);
         factorized_ = true;
         valuesChanged_ = false;
     }

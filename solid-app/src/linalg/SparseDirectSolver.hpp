@@ -26,7 +26,9 @@ struct DirectSolverOptions
 {
     bool symmetric = true;         // symmetric matrix (LDL^T); false: general LU
     bool positiveDefinite = false; // with symmetric: SPD (SYM=1, no pivoting) instead of
-                                   // general symmetric (SYM=2, pivoting; safe near instability)
+                                   // general symmetric (SYM=2, pivoting; safe near instability).
+                                   // SYM=1 has no null-pivot detection: a singular matrix is
+                                   // caught only if a pivot is exactly 0 or < 0.
     int ordering = static_cast<int>(Ordering::Metis); // ICNTL(7)
     int memoryRelaxationPercent = 30;                  // ICNTL(14); raised on INFOG(1) = -9
     int verbosity = 0;                                 // 0 silent ... 4 MUMPS diagnostics
@@ -79,6 +81,8 @@ public:
     // Negative pivots of the last symmetric factorization (INFOG(12)); with an SPD
     // tangent expected, > 0 flags instability (buckling, limit point, inverted elements).
     int negativePivotCount() const { return negativePivots_; }
+    // Entries in the factors of the last factorization (INFOG(29)): fill, for benchmarks.
+    long long factorEntryCount() const { return factorEntries_; }
     int size() const { return n_; }
     MPI_Comm communicator() const { return comm_; }
 
@@ -102,6 +106,7 @@ private:
     int factorizationCount_ = 0;
     int solveCount_ = 0;
     int negativePivots_ = 0;
+    long long factorEntries_ = 0;
 };
 
 } // namespace fsi::linalg
