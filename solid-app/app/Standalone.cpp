@@ -1,0 +1,191 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "Standalone.hpp"
+
+#include "config/SolidConfig.hpp"
+#include "config/YamlReader.hpp"
+#include "fe/StructuralSolver.hpp"
+#include "io/AtomicFile.hpp"
+#include "io/CsvHistory.hpp"
+#include "io/VtuWriter.hpp"
+#include "material/Material.hpp"
+#include "mesh/Mesh.hpp"
+
+#include <mpi.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+namespace fsi::app {
+namespace fs = std::filesystem;
+
+RunOptions parseArguments(int argc, char** argv)
+{
+    RunOptions o;
+    const std::string usage = "usage: solid-app CONFIG.yaml [--out DIR]";
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (a == "--out") {
+            if (i + 1 >= argc)
+                throw std::runtime_error("--out needs a folder; " + usage);
+            o.outputFolder = argv[++i];
+        } else if (a == "-h" || a == "--help")
+            throw std::runtime_error(usage);
+        else if (!a.empty() && a[0] == '-')
+            throw std::runtime_error("unknown option '" + a + "'; " + usage);
+        else if (o.configFile.empty())
+            o.configFile = a;
+        else
+            throw std::runtime_error("more than one config file given; " + usage);
+    }
+    if (o.configFile.empty())
+        throw std::runtime_error("no config file given; " + usage);
+    return o;
+}
+
+bool isCoupledConfig(const std::string& configFile)
+{
+    return config::Block::load(configFile).has("coupling");
+}
+
+namespace {
+
+fe::ProblemDefinition problemFromConfig(const config::SolidConfig& c)
+{
+    fe::ProblemDefinition p;
+    p.kinematics = c.kinematics;
+    p.density = c.density;
+    if (c.loads.hasGravity)
+        p.gravity = Eigen::Vector3d(c.loads.gravity[0], c.loads.gravity[1], c.loads.gravity[2]);
+    p.clamped = c.mesh.clamped;
+    p.wetted = c.mesh.wetted;
+    for (const auto& d : c.loads.displacements)
+        p.displacements.push_back({d.surface, d.value});
+    for (const auto& t : c.loads.tractions)
+        p.tractions.push_back({t.surface, Eigen::Vector3d(t.traction[0], t.traction[1], t.traction[2])});
+    for (const auto& f : c.loads.forces)
+        p.forces.push_back({f.surface, Eigen::Vector3d(f.total[0], f.total[1], f.total[2])});
+    p.newton.maxIterations = c.newton.maxIterations;
+    p.newton.residualTolerance = c.newton.residualTolerance;
+    p.newton.absoluteTolerance = c.newton.absoluteTolerance;
+    p.newton.lineSearch = c.newton.lineSearch;
+    p.newton.maxLoadCuts = c.newton.maxLoadCuts;
+    p.linearSolverVerbosity = c.solverVerbosity;
+    return p;
+}
+
+std::vector<std::string> surfacesOf(const config::SolidConfig& c)
+{
+    std::vector<std::string> s = c.mesh.clamped;
+    if (!c.mesh.wetted.empty())
+        s.push_back(c.mesh.wetted);
+    for (const auto& d : c.loads.displacements)
+        s.push_back(d.surface);
+    for (const auto& t : c.loads.tractions)
+        s.push_back(t.surface);
+    for (const auto& f : c.loads.forces)
+        s.push_back(f.surface);
+    return s;
+}
+
+} // namespace
+
+int runStandalone(const RunOptions& options)
+{
+    const auto wallStart = std::chrono::steady_clock::now();
+    int rank = 0, ranks = 1;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+    const config::SolidConfig cfg = config::SolidConfig::load(options.configFile);
+    const std::string out = options.outputFolder.empty() ? cfg.output.folder : options.outputFolder;
+    if (rank == 0) {
+        std::error_code ec;
+        fs::create_directories(out, ec);
+        if (ec)
+            throw std::runtime_error(out + ": cannot create the output folder (" + ec.message() + ")");
+        std::printf("%s", cfg.echo().c_str());
+        io::writeFileAtomically((fs::path(out) / "config.echo.yaml").string(), cfg.echo());
+    }
+    const mesh::Mesh mesh = mesh::readGmsh(cfg.mesh.file, {cfg.mesh.volume, surfacesOf(cfg)}, rank != 0);
+    const auto law = material::makeMaterial(cfg.material, cfg.kinematics);
+    fe::ProblemDefinition problem = problemFromConfig(cfg);
+    problem.printIterations = true;
+    fe::StructuralSolver solver(MPI_COMM_WORLD, mesh, *law, problem);
+    if (rank == 0) {
+        std::printf("solid-app: %d nodes, %d cells (", mesh.numNodes(), mesh.cells.size());
+        for (const auto& [name, count] : mesh.cellTypeCounts())
+            std::printf(" %s:%d", name.c_str(), count);
+        std::printf(" ), %d free dofs, %d rank(s), material %s\n", solver.numFreeDofs(), ranks,
+                    law->name().c_str());
+    }
+    std::vector<std::string> names;
+    std::vector<std::array<double, 3>> points;
+    for (const auto& w : cfg.output.watch) {
+        names.push_back(w.name);
+        points.push_back(w.point);
+    }
+    io::CsvHistory history((fs::path(out) / "history.csv").string(), mesh, names, points);
+    io::PvdSeries series((fs::path(out) / "solid.pvd").string());
+    std::string levels = "level,time,load_factor,newton_iterations,load_cuts,residual,factorizations,wall_s\n";
+
+    const std::vector<double> times = cfg.time.levels();
+    double previous = 0.0;
+    for (std::size_t n = 0; n < times.size(); ++n) {
+        const material::TimeStep step{times[n], n == 0 ? 0.0 : times[n] - previous};
+        const double factor = cfg.time.factorAt(times[n]);
+        if (rank == 0)
+            std::printf("level %zu  t = %g s  dt = %g s  load factor %g\n", n, step.time, step.dt, factor);
+        const auto report = solver.solve(step, {}, factor);
+        if (rank == 0)
+            std::printf("  %s in %d Newton iterations (|R| %.3e -> %.3e N), %d factorizations so far\n",
+                        report.converged ? "converged" : "NOT converged", report.newtonIterations,
+                        report.initialResidual, report.finalResidual, solver.factorizationCount());
+        if (!report.converged) {
+            if (rank == 0)
+                std::fprintf(stderr, "error: %s: level %zu (t = %g s) did not converge: %s\n",
+                             options.configFile.c_str(), n, step.time, report.message.c_str());
+            return 2;
+        }
+        solver.acceptLevel();
+        previous = times[n];
+        std::vector<material::Vector6> nodal, cellStress;
+        const bool writeVtu = cfg.output.vtu && (n % cfg.output.every == 0 || n + 1 == times.size());
+        if (writeVtu)
+            solver.cauchyStress(nodal, cellStress);
+        if (rank == 0) {
+            history.record(step.time, solver.displacement());
+            if (writeVtu) {
+                char name[64];
+                std::snprintf(name, sizeof name, "solid_%05zu.vtu", n);
+                io::writeVtu((fs::path(out) / name).string(), mesh,
+                             {&solver.displacement(), &nodal, &cellStress}, cfg.output.binary);
+                series.add(step.time, name);
+                series.write();
+            }
+            const double wall =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
+            char row[256];
+            std::snprintf(row, sizeof row, "%zu,%.10g,%.10g,%d,%d,%.6e,%d,%.3f\n", n, step.time, factor,
+                          report.newtonIterations, report.loadCuts, report.finalResidual,
+                          solver.factorizationCount(), wall);
+            levels += row;
+            io::writeFileAtomically((fs::path(out) / "levels.csv").string(), levels);
+        }
+    }
+    if (rank == 0) {
+        const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
+        for (std::size_t k = 0; k < names.size(); ++k) {
+            const int node = history.node(k);
+            const auto& u = solver.displacement();
+            std::printf("watch %s: node %d at distance %.3e m, u = (%.6e, %.6e, %.6e) m\n", names[k].c_str(),
+                        node, history.distance(k), u[3 * node], u[3 * node + 1], u[3 * node + 2]);
+        }
+        std::printf("solid-app: done, %zu level(s), %d analyses, %d factorizations, wall %.3f s, output in %s\n",
+                    times.size(), solver.analysisCount(), solver.factorizationCount(), wall, out.c_str());
+    }
+    return 0;
+}
+
+} // namespace fsi::app

@@ -1,0 +1,25 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// solid-app's standalone mode: a structural problem under the prescribed load/time history
+// of the config (no fluid). Collective on MPI_COMM_WORLD; rank 0 prints and writes.
+#pragma once
+#include <string>
+
+namespace fsi::app {
+
+struct RunOptions
+{
+    std::string configFile;
+    std::string outputFolder;   // "" = solid.output.folder of the config
+};
+
+// Parses "CONFIG.yaml [--out DIR]"; throws std::runtime_error with a usage line.
+RunOptions parseArguments(int argc, char** argv);
+
+// True if the config has a top-level `coupling:` block (the driver's coupled mode).
+bool isCoupledConfig(const std::string& configFile);
+
+// Runs the standalone problem. Returns the exit code (0 ok, 2 a level did not converge);
+// throws std::runtime_error (one line) on bad input.
+int runStandalone(const RunOptions& options);
+
+} // namespace fsi::app

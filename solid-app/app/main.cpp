@@ -1,0 +1,37 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// solid-app CONFIG.yaml [--out DIR]
+#include "Standalone.hpp"
+
+#include <mpi.h>
+
+#include <cstdio>
+#include <exception>
+
+#ifdef FSI_HAVE_DRIVER
+#include "driver/RunCoupled.hpp" // int fsi::driver::runCoupled(configFile, outputFolder)
+#endif
+
+int main(int argc, char** argv)
+{
+    MPI_Init(&argc, &argv);
+    int rank = 0, code = 0;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    try {
+        const auto options = fsi::app::parseArguments(argc, argv);
+        if (fsi::app::isCoupledConfig(options.configFile)) {
+#ifdef FSI_HAVE_DRIVER
+            code = fsi::driver::runCoupled(options.configFile, options.outputFolder);
+#else
+            throw std::runtime_error(options.configFile + ": has a 'coupling' block but this solid-app "
+                                     "was built without the coupling driver");
+#endif
+        } else
+            code = fsi::app::runStandalone(options);
+    } catch (const std::exception& e) {
+        if (rank == 0)
+            std::fprintf(stderr, "error: %s\n", e.what());
+        code = 1;
+    }
+    MPI_Finalize();
+    return code;
+}

@@ -1,0 +1,280 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "config/SolidConfig.hpp"
+
+#include "config/YamlReader.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <stdexcept>
+
+namespace fsi::config {
+namespace fs = std::filesystem;
+
+namespace {
+std::string resolve(const std::string& path, const std::string& dir)
+{
+    fs::path p(path);
+    return p.is_absolute() ? path : (fs::path(dir) / p).lexically_normal().string();
+}
+} // namespace
+
+MeshParameters MeshParameters::parse(const Block& b, const std::string& configDir)
+{
+    b.allowOnly({"file", "volume", "clamped", "wetted"});
+    MeshParameters p;
+    p.file = resolve(b.text("file"), configDir);
+    p.volume = b.text("volume");
+    p.clamped = b.has("clamped") ? b.texts("clamped") : std::vector<std::string>{};
+    p.wetted = b.text("wetted", "");
+    return p;
+}
+
+material::MaterialParameters parseMaterial(const Block& b)
+{
+    b.allowOnly({"type", "E", "nu", "K", "G", "modulus_basis", "prony", "density"});
+    material::MaterialParameters m;
+    m.file = fs::path(b.file()).filename().string();
+    m.keyPrefix = b.path();
+    m.type = b.choice("type", {"linear-elastic", "neo-hookean", "viscoelastic"});
+    auto optionalNumber = [&b](const char* key) {
+        return b.has(key) ? std::optional<double>(b.number(key)) : std::nullopt;
+    };
+    m.youngsModulus = optionalNumber("E");
+    m.poissonRatio = optionalNumber("nu");
+    m.bulkModulus = optionalNumber("K");
+    m.shearModulus = optionalNumber("G");
+    if (m.type == "viscoelastic") {
+        m.modulusBasis = b.choice("modulus_basis", {"long-term", "instantaneous"});
+        const Block prony = b.block("prony");
+        prony.allowOnly({"convention", "coefficients", "times"});
+        m.pronyConvention = prony.choice("convention", {"long-term-gamma", "abaqus-g"});
+        m.pronyCoefficients = prony.numbers("coefficients");
+        m.pronyTimes = prony.numbers("times");
+    } else {
+        if (b.has("prony"))
+            b.fail("prony", "is only for type viscoelastic (remove it)");
+        if (b.has("modulus_basis"))
+            b.fail("modulus_basis", "is only for type viscoelastic (remove it)");
+    }
+    m.validate();
+    return m;
+}
+
+NewtonParameters NewtonParameters::parse(const Block& b)
+{
+    b.allowOnly({"max_iterations", "residual_tolerance", "absolute_tolerance", "line_search",
+                 "max_load_cuts"});
+    NewtonParameters p;
+    p.maxIterations = b.integer("max_iterations", p.maxIterations);
+    p.residualTolerance = b.number("residual_tolerance", p.residualTolerance);
+    p.absoluteTolerance = b.number("absolute_tolerance", p.absoluteTolerance);
+    p.lineSearch = b.flag("line_search", p.lineSearch);
+    p.maxLoadCuts = b.integer("max_load_cuts", p.maxLoadCuts);
+    if (p.maxIterations < 1)
+        b.fail("max_iterations", "must be >= 1");
+    if (!(p.residualTolerance > 0.0))
+        b.fail("residual_tolerance", "must be > 0");
+    if (!(p.absoluteTolerance >= 0.0))
+        b.fail("absolute_tolerance", "must be >= 0");
+    if (p.maxLoadCuts < 0)
+        b.fail("max_load_cuts", "must be >= 0");
+    return p;
+}
+
+LoadParameters LoadParameters::parse(const Block& b)
+{
+    b.allowOnly({"gravity", "displacements", "tractions", "forces"});
+    LoadParameters p;
+    if (b.has("gravity")) {
+        p.gravity = b.vector3("gravity");
+        p.hasGravity = true;
+    }
+    if (b.has("displacements"))
+        for (const Block& d : b.blockList("displacements")) {
+            d.allowOnly({"surface", "x", "y", "z"});
+            DisplacementLoad load;
+            load.surface = d.text("surface");
+            const char* names[3] = {"x", "y", "z"};
+            for (int c = 0; c < 3; ++c)
+                if (d.has(names[c]))
+                    load.value[c] = d.number(names[c]);
+            if (!load.value[0] && !load.value[1] && !load.value[2])
+                d.fail("x", "missing: give at least one of x, y, z [m]");
+            p.displacements.push_back(load);
+        }
+    if (b.has("tractions"))
+        for (const Block& t : b.blockList("tractions")) {
+            t.allowOnly({"surface", "traction"});
+            p.tractions.push_back({t.text("surface"), t.vector3("traction")});
+        }
+    if (b.has("forces"))
+        for (const Block& f : b.blockList("forces")) {
+            f.allowOnly({"surface", "total"});
+            p.forces.push_back({f.text("surface"), f.vector3("total")});
+        }
+    return p;
+}
+
+double TimeParameters::factorAt(double t) const
+{
+    if (loadFactor.empty())
+        return 1.0;
+    if (t <= loadFactor.front()[0])
+        return loadFactor.front()[1];
+    for (std::size_t i = 1; i < loadFactor.size(); ++i)
+        if (t <= loadFactor[i][0]) {
+            const auto& a = loadFactor[i - 1];
+            const auto& b = loadFactor[i];
+            return a[1] + (b[1] - a[1]) * (t - a[0]) / (b[0] - a[0]);
+        }
+    return loadFactor.back()[1];
+}
+
+std::vector<double> TimeParameters::levels() const
+{
+    std::vector<double> t{0.0};
+    if (!present)
+        return t;
+    const long n = std::lround(std::ceil(end / dt - 1e-9));
+    for (long i = 1; i <= n; ++i)
+        t.push_back(std::min(end, i * dt));
+    return t;
+}
+
+TimeParameters TimeParameters::parse(const Block& b)
+{
+    b.allowOnly({"dt", "end", "load_factor"});
+    TimeParameters p;
+    p.present = true;
+    p.dt = b.number("dt");
+    p.end = b.number("end");
+    if (!(p.dt > 0.0))
+        b.fail("dt", "must be > 0 [s]");
+    if (!(p.end >= 0.0))
+        b.fail("end", "must be >= 0 [s]");
+    if (b.has("load_factor")) {
+        for (const auto& row : b.table("load_factor")) {
+            if (row.size() != 2)
+                b.fail("load_factor", "rows must be [time, factor]");
+            if (!p.loadFactor.empty() && !(row[0] > p.loadFactor.back()[0]))
+                b.fail("load_factor", "times must increase");
+            p.loadFactor.push_back({row[0], row[1]});
+        }
+    }
+    return p;
+}
+
+OutputParameters OutputParameters::parse(const Block& b, const std::string& configDir)
+{
+    b.allowOnly({"folder", "vtu", "format", "every", "watch"});
+    OutputParameters p;
+    p.folder = resolve(b.text("folder", p.folder), configDir);
+    p.vtu = b.flag("vtu", p.vtu);
+    p.binary = b.choice("format", {"binary", "ascii"}, "binary") == "binary";
+    p.every = b.integer("every", p.every);
+    if (p.every < 1)
+        b.fail("every", "must be >= 1");
+    if (b.has("watch"))
+        for (const Block& w : b.blockList("watch")) {
+            w.allowOnly({"name", "point"});
+            p.watch.push_back({w.text("name"), w.vector3("point")});
+        }
+    return p;
+}
+
+SolidConfig SolidConfig::load(const std::string& file)
+{
+    const Block root = Block::load(file);
+    const std::string dir = fs::path(file).parent_path().string();
+    root.allowOnly({"solid", "coupling", "fluid"});
+    SolidConfig c;
+    c.file = file;
+    c.hasCoupling = root.has("coupling");
+    const Block s = root.block("solid");
+    s.allowOnly({"mesh", "material", "kinematics", "newton", "linear_solver", "loads", "time", "output"});
+    c.mesh = MeshParameters::parse(s.block("mesh"), dir);
+    const Block m = s.block("material");
+    c.material = parseMaterial(m);
+    c.density = m.number("density", 0.0);
+    if (c.density < 0.0)
+        m.fail("density", "must be >= 0 [kg/m^3]");
+    const std::string kin = s.choice("kinematics", {"small-strain", "total-lagrangian"});
+    c.kinematics = kin == "small-strain" ? material::Kinematics::SmallStrain
+                                         : material::Kinematics::TotalLagrangian;
+    if (c.material.type == "neo-hookean" && c.kinematics == material::Kinematics::SmallStrain)
+        s.fail("kinematics", "must be total-lagrangian for a neo-hookean material");
+    if (auto n = s.optionalBlock("newton"))
+        c.newton = NewtonParameters::parse(*n);
+    if (auto l = s.optionalBlock("linear_solver")) {
+        l->allowOnly({"verbosity"});
+        c.solverVerbosity = l->integer("verbosity", 0);
+    }
+    c.loads = LoadParameters::parse(s.block("loads"));
+    if (c.loads.hasGravity && !m.has("density"))
+        m.fail("density", "missing: loads.gravity needs the density [kg/m^3]");
+    if (auto t = s.optionalBlock("time"))
+        c.time = TimeParameters::parse(*t);
+    if (auto o = s.optionalBlock("output"))
+        c.output = OutputParameters::parse(*o, dir);
+    else
+        c.output.folder = resolve(c.output.folder, dir);
+    if (c.mesh.clamped.empty() && c.loads.displacements.empty())
+        s.fail("mesh.clamped", "missing: give clamped surfaces or loads.displacements (rigid-body motion is singular)");
+    return c;
+}
+
+std::string SolidConfig::echo() const
+{
+    std::ostringstream o;
+    auto vec = [](const std::array<double, 3>& v) {
+        std::ostringstream s;
+        s << "[" << v[0] << ", " << v[1] << ", " << v[2] << "]";
+        return s.str();
+    };
+    o << "# resolved solid configuration (from " << file << ")\n";
+    o << "solid:\n  mesh:\n    file: " << mesh.file << "\n    volume: " << mesh.volume << "\n    clamped: [";
+    for (std::size_t i = 0; i < mesh.clamped.size(); ++i)
+        o << (i ? ", " : "") << mesh.clamped[i];
+    o << "]\n    wetted: '" << mesh.wetted << "'\n";
+    o << "  material:\n    density: " << density << "\n";
+    std::istringstream d(material.describe());
+    for (std::string line; std::getline(d, line);)
+        o << "    # " << line << "\n";
+    o << "  kinematics: "
+      << (kinematics == material::Kinematics::SmallStrain ? "small-strain" : "total-lagrangian") << "\n";
+    o << "  newton: {max_iterations: " << newton.maxIterations
+      << ", residual_tolerance: " << newton.residualTolerance
+      << ", absolute_tolerance: " << newton.absoluteTolerance
+      << ", line_search: " << (newton.lineSearch ? "true" : "false")
+      << ", max_load_cuts: " << newton.maxLoadCuts << "}\n";
+    o << "  loads:\n";
+    if (loads.hasGravity)
+        o << "    gravity: " << vec(loads.gravity) << "\n";
+    for (const auto& dl : loads.displacements) {
+        o << "    - displacement: {surface: " << dl.surface;
+        const char* n[3] = {"x", "y", "z"};
+        for (int c = 0; c < 3; ++c)
+            if (dl.value[c])
+                o << ", " << n[c] << ": " << *dl.value[c];
+        o << "}\n";
+    }
+    for (const auto& t : loads.tractions)
+        o << "    - traction: {surface: " << t.surface << ", traction: " << vec(t.traction) << "}\n";
+    for (const auto& f : loads.forces)
+        o << "    - force: {surface: " << f.surface << ", total: " << vec(f.total) << "}\n";
+    if (time.present) {
+        o << "  time: {dt: " << time.dt << ", end: " << time.end << ", levels: " << time.levels().size()
+          << ", load_factor: [";
+        for (std::size_t i = 0; i < time.loadFactor.size(); ++i)
+            o << (i ? ", " : "") << "[" << time.loadFactor[i][0] << ", " << time.loadFactor[i][1] << "]";
+        o << "]}\n";
+    } else
+        o << "  # no time block: one static level\n";
+    o << "  output: {folder: " << output.folder << ", vtu: " << (output.vtu ? "true" : "false")
+      << ", format: " << (output.binary ? "binary" : "ascii") << ", every: " << output.every
+      << ", watch: " << output.watch.size() << " points}\n";
+    return o.str();
+}
+
+} // namespace fsi::config

@@ -1,0 +1,514 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "fe/StructuralSolver.hpp"
+
+#include "fe/ElementKernel.hpp"
+#include "fe/Quadrature.hpp"
+#include "linalg/CsrPattern.hpp"
+#include "linalg/Partition.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+#include <sstream>
+#include <stdexcept>
+
+namespace fsi::fe {
+using material::Kinematics;
+using material::Vector6;
+
+struct StructuralSolver::Pattern
+{
+    linalg::CsrPattern csr;
+};
+
+namespace {
+
+Eigen::Matrix3Xd cellCoordinates(const Eigen::Matrix3Xd& nodes, const int* conn, int n)
+{
+    Eigen::Matrix3Xd X(3, n);
+    for (int a = 0; a < n; ++a)
+        X.col(a) = nodes.col(conn[a]);
+    return X;
+}
+
+// Consistent nodal weights int N_a dA of the faces of a group [m^2] (added into w per node).
+void faceWeights(const mesh::Mesh& mesh, const mesh::SurfaceGroup& group, std::vector<double>& w)
+{
+    Eigen::VectorXd N;
+    Eigen::MatrixXd dN;
+    for (int f = 0; f < group.faces.size(); ++f) {
+        const auto type = group.faces.types[f];
+        const auto& ref = mesh::ReferenceElement::get(type);
+        const int n = ref.numNodes();
+        const int* conn = group.faces.nodes(f);
+        const Eigen::Matrix3Xd X = cellCoordinates(mesh.nodes, conn, n);
+        for (const auto& qp : quadrature(type)) {
+            ref.evaluate(qp.xi, N, dN);
+            const Eigen::Matrix<double, 3, 2> T = X * dN;
+            const double dA = T.col(0).cross(T.col(1)).norm() * qp.weight;
+            for (int a = 0; a < n; ++a)
+                w[conn[a]] += N[a] * dA;
+        }
+    }
+}
+
+} // namespace
+
+StructuralSolver::StructuralSolver(MPI_Comm comm, const mesh::Mesh& mesh, const material::Material& law,
+                                   ProblemDefinition problem)
+    : comm_(comm), mesh_(mesh), law_(law), problem_(std::move(problem))
+{
+    MPI_Comm_rank(comm_, &rank_);
+    MPI_Comm_size(comm_, &size_);
+    const int nDofs = numDofs();
+
+    // --- constraints: clamped surfaces, then prescribed components
+    std::vector<char> fixed(nDofs, 0);
+    std::vector<double> value(nDofs, 0.0);
+    for (const auto& name : problem_.clamped)
+        for (int node : mesh_.surface(name).nodes)
+            for (int c = 0; c < 3; ++c)
+                fixed[3 * node + c] = 1;
+    for (const auto& d : problem_.displacements)
+        for (int node : mesh_.surface(d.surface).nodes)
+            for (int c = 0; c < 3; ++c)
+                if (d.value[c]) {
+                    if (!fixed[3 * node + c] || value[3 * node + c] == 0.0)
+                        value[3 * node + c] = *d.value[c];
+                    fixed[3 * node + c] = 1;
+                }
+    equation_.assign(nDofs, -1);
+    for (int dof = 0; dof < nDofs; ++dof) {
+        if (fixed[dof]) {
+            prescribedDofs_.push_back(dof);
+            prescribedValues_.push_back(value[dof]);
+        } else
+            equation_[dof] = numFree_++;
+    }
+    if (numFree_ == 0)
+        throw std::runtime_error(mesh_.source + ": every degree of freedom is constrained");
+    for (const auto& t : problem_.tractions)
+        mesh_.surface(t.surface);
+    for (const auto& f : problem_.forces)
+        mesh_.surface(f.surface);
+    if (!problem_.wetted.empty())
+        wettedNodes_ = mesh_.surface(problem_.wetted).nodes;
+
+    // --- element partition (METIS) and this rank's cells
+    const auto& cells = mesh_.cells;
+    std::vector<int> part = size_ > 1 ? linalg::partitionElements(cells.size(), cells.offsets,
+                                                                     cells.connectivity, size_)
+                                      : std::vector<int>(cells.size(), 0);
+    for (int c = 0; c < cells.size(); ++c)
+        if (part[c] == rank_)
+            ownCells_.push_back(c);
+
+    // --- quadrature data, history, dof lists of own cells
+    std::vector<int> dofOffsets{0}, dofs;
+    int points = 0;
+    for (int c : ownCells_) {
+        const int n = cells.numNodes(c);
+        quadOffset_.push_back(quad_.size());
+        pointOffset_.push_back(points);
+        const double det = appendCellQuadrature(cells.types[c], cellCoordinates(mesh_.nodes, cells.nodes(c), n), quad_);
+        if (!(det > 0.0))
+            throw std::runtime_error(mesh_.source + ": inverted cell " + std::to_string(c) +
+                                     " (negative Jacobian at an integration point)");
+        points += static_cast<int>(quadrature(cells.types[c]).size());
+        for (int a = 0; a < n; ++a)
+            for (int i = 0; i < 3; ++i)
+                dofs.push_back(equation_[3 * cells.nodes(c)[a] + i]);
+        dofOffsets.push_back(static_cast<int>(dofs.size()));
+    }
+    pointOffset_.push_back(points);
+    committedHistory_.assign(static_cast<std::size_t>(points) * law_.historySize(), 0.0);
+    for (int p = 0; p < points && law_.historySize(); ++p)
+        law_.initialiseHistory(committedHistory_.data() + p * law_.historySize());
+
+    pattern_ = std::make_unique<Pattern>();
+    pattern_->csr = linalg::CsrPattern::fromElements(numFree_, dofOffsets, dofs, true);
+    linalg::DirectSolverOptions options;
+    options.symmetric = true;
+    options.verbosity = problem_.linearSolverVerbosity;
+    linear_ = std::make_unique<linalg::SparseDirectSolver>(comm_, options);
+    linear_->setPattern(numFree_, pattern_->csr.tripletRows(), pattern_->csr.tripletColumns());
+    values_.assign(pattern_->csr.nonZeros(), 0.0);
+
+    u_.assign(nDofs, 0.0);
+    uCommitted_ = u_;
+    fextCommitted_.assign(nDofs, 0.0);
+}
+
+StructuralSolver::~StructuralSolver() = default;
+
+int StructuralSolver::factorizationCount() const { return linear_->factorizationCount(); }
+int StructuralSolver::analysisCount() const { return linear_->analysisCount(); }
+
+double StructuralSolver::freeNorm(const std::vector<double>& v) const
+{
+    double s = 0.0;
+    for (std::size_t dof = 0; dof < v.size(); ++dof)
+        if (equation_[dof] >= 0)
+            s += v[dof] * v[dof];
+    return std::sqrt(s);
+}
+
+void StructuralSolver::applyPrescribed(double factor, std::vector<double>& u) const
+{
+    for (std::size_t k = 0; k < prescribedDofs_.size(); ++k)
+        u[prescribedDofs_[k]] = factor * prescribedValues_[k];
+}
+
+void StructuralSolver::buildExternalLoads(double factor, const InterfaceLoads& interface,
+                                          std::vector<double>& f) const
+{
+    f.assign(numDofs(), 0.0);
+    const auto& cells = mesh_.cells;
+    // gravity over all cells (replicated: cheap against assembly)
+    if (problem_.density > 0.0 && problem_.gravity.squaredNorm() > 0.0) {
+        std::vector<double> w(mesh_.numNodes(), 0.0);
+        Eigen::VectorXd N;
+        Eigen::MatrixXd dN;
+        for (int c = 0; c < cells.size(); ++c) {
+            const auto& ref = mesh::ReferenceElement::get(cells.types[c]);
+            const int n = ref.numNodes();
+            const Eigen::Matrix3Xd X = cellCoordinates(mesh_.nodes, cells.nodes(c), n);
+            for (const auto& qp : quadrature(cells.types[c])) {
+                ref.evaluate(qp.xi, N, dN);
+                const double dV = (X * dN).determinant() * qp.weight;
+                for (int a = 0; a < n; ++a)
+                    w[cells.nodes(c)[a]] += N[a] * dV;
+            }
+        }
+        for (int node = 0; node < mesh_.numNodes(); ++node)
+            for (int i = 0; i < 3; ++i)
+                f[3 * node + i] += factor * problem_.density * problem_.gravity[i] * w[node];
+    }
+    auto spread = [&](const std::string& surface, const Eigen::Vector3d& traction) {
+        std::vector<double> w(mesh_.numNodes(), 0.0);
+        faceWeights(mesh_, mesh_.surface(surface), w);
+        for (int node : mesh_.surface(surface).nodes)
+            for (int i = 0; i < 3; ++i)
+                f[3 * node + i] += factor * traction[i] * w[node];
+        return std::accumulate(w.begin(), w.end(), 0.0);
+    };
+    for (const auto& t : problem_.tractions)
+        spread(t.surface, t.traction);
+    for (const auto& force : problem_.forces) {
+        std::vector<double> w(mesh_.numNodes(), 0.0);
+        faceWeights(mesh_, mesh_.surface(force.surface), w);
+        const double area = std::accumulate(w.begin(), w.end(), 0.0);
+        spread(force.surface, force.total / area);
+    }
+    if (!interface.forces.empty()) {
+        if (interface.forces.size() != 3 * wettedNodes_.size())
+            throw std::runtime_error("StructuralSolver::solve: interface forces have " +
+                                     std::to_string(interface.forces.size()) + " values, expected 3 x " +
+                                     std::to_string(wettedNodes_.size()) + " wetted nodes");
+        for (std::size_t k = 0; k < wettedNodes_.size(); ++k)
+            for (int i = 0; i < 3; ++i)
+                f[3 * wettedNodes_[k] + i] += interface.forces[3 * k + i];
+    }
+}
+
+bool StructuralSolver::assemble(const std::vector<double>& u, bool withMatrix, std::vector<double>& fint)
+{
+    const auto& cells = mesh_.cells;
+    fint.assign(numDofs(), 0.0);
+    if (withMatrix)
+        std::fill(values_.begin(), values_.end(), 0.0);
+    const std::size_t hs = law_.historySize();
+    Eigen::VectorXd fe;
+    Eigen::MatrixXd Ke;
+    int ok = 1;
+    std::vector<int> dofs;
+    for (std::size_t k = 0; k < ownCells_.size() && ok; ++k) {
+        const int c = ownCells_[k];
+        const int n = cells.numNodes(c);
+        const int* conn = cells.nodes(c);
+        CellQuadrature cq{n, pointOffset_[k + 1] - pointOffset_[k], quad_.data() + quadOffset_[k]};
+        Eigen::Matrix3Xd ue(3, n);
+        for (int a = 0; a < n; ++a)
+            for (int i = 0; i < 3; ++i)
+                ue(i, a) = u[3 * conn[a] + i];
+        try {
+            cellResponse(cq, ue, law_, problem_.kinematics, step_,
+                         hs ? committedHistory_.data() + pointOffset_[k] * hs : nullptr, fe,
+                         withMatrix ? &Ke : nullptr);
+        } catch (const material::InadmissibleDeformation&) {
+            ok = 0;
+            break;
+        }
+        if (!fe.allFinite()) {
+            ok = 0;
+            break;
+        }
+        dofs.resize(3 * n);
+        for (int a = 0; a < n; ++a)
+            for (int i = 0; i < 3; ++i) {
+                dofs[3 * a + i] = equation_[3 * conn[a] + i];
+                fint[3 * conn[a] + i] += fe[3 * a + i];
+            }
+        if (withMatrix)
+            for (int r = 0; r < 3 * n; ++r) {
+                if (dofs[r] < 0)
+                    continue;
+                for (int s = 0; s < 3 * n; ++s)
+                    if (dofs[s] >= 0 && dofs[s] <= dofs[r])
+                        values_[pattern_->csr.find(dofs[r], dofs[s])] += Ke(r, s);
+            }
+    }
+    MPI_Allreduce(MPI_IN_PLACE, &ok, 1, MPI_INT, MPI_MIN, comm_);
+    if (!ok)
+        return false;
+    if (size_ > 1)
+        MPI_Allreduce(MPI_IN_PLACE, fint.data(), static_cast<int>(fint.size()), MPI_DOUBLE, MPI_SUM, comm_);
+    if (withMatrix)
+        linear_->setValues(values_);
+    return true;
+}
+
+bool StructuralSolver::newton(const std::vector<double>& fext, double factor, std::vector<double>& u,
+                              SolveReport& report)
+{
+    const auto& nw = problem_.newton;
+    applyPrescribed(factor, u);
+    std::vector<double> fint, R(numDofs()), du(numFree_), trial;
+    auto residual = [&](const std::vector<double>& state, bool matrix, double& norm, double& ref) {
+        if (!assemble(state, matrix, fint))
+            return false;
+        double fe2 = 0.0, fi2 = 0.0;
+        for (int dof = 0; dof < numDofs(); ++dof) {
+            R[dof] = fext[dof] - fint[dof];
+            fe2 += fext[dof] * fext[dof];
+            fi2 += fint[dof] * fint[dof];
+        }
+        norm = freeNorm(R);
+        ref = std::max(std::sqrt(fe2), std::sqrt(fi2));
+        return std::isfinite(norm);
+    };
+    report.residuals.clear();
+    double norm = 0.0, ref = 0.0;
+    if (!residual(u, true, norm, ref)) {
+        report.message = "inadmissible deformation (det F <= 0) at the start state";
+        return false;
+    }
+    report.initialResidual = norm;
+    report.residuals.push_back(norm);
+    for (int it = 0;; ++it) {
+        report.referenceForce = ref;
+        report.finalResidual = norm;
+        if (norm <= nw.residualTolerance * ref + nw.absoluteTolerance)
+            return true;
+        if (it >= nw.maxIterations) {
+            report.message = "Newton stalled: " + std::to_string(it) + " iterations, residual " +
+                             std::to_string(norm) + " N";
+            return false;
+        }
+        // solve K du = R on the free dofs (rhs on rank 0, solution on all ranks)
+        std::fill(du.begin(), du.end(), 0.0);
+        if (rank_ == 0)
+            for (int dof = 0; dof < numDofs(); ++dof)
+                if (equation_[dof] >= 0)
+                    du[equation_[dof]] = R[dof];
+        linear_->solveSummedRhs(du);
+        // line search on ||R||
+        double alpha = 1.0, trialNorm = 0.0, trialRef = 0.0;
+        bool accepted = false;
+        for (int cut = 0; cut <= (nw.lineSearch ? 4 : 0); ++cut, alpha *= 0.5) {
+            trial = u;
+            for (int dof = 0; dof < numDofs(); ++dof)
+                if (equation_[dof] >= 0)
+                    trial[dof] += alpha * du[equation_[dof]];
+            const bool admissible = residual(trial, false, trialNorm, trialRef);
+            if (admissible && (!nw.lineSearch || trialNorm < norm || trialNorm <= nw.absoluteTolerance)) {
+                accepted = true;
+                break;
+            }
+        }
+        if (!accepted) {
+            report.message = "Newton stalled: no decrease of the residual along the Newton direction";
+            return false;
+        }
+        u.swap(trial);
+        ++report.newtonIterations;
+        if (problem_.printIterations && rank_ == 0)
+            std::printf("    newton %2d  |R| = %.3e N  (ref %.3e N)%s\n", it + 1, trialNorm, trialRef,
+                        alpha < 1.0 ? ("  line search " + std::to_string(alpha)).c_str() : "");
+        norm = trialNorm;
+        ref = trialRef;
+        report.residuals.push_back(norm);
+        if (norm <= nw.residualTolerance * ref + nw.absoluteTolerance || it + 1 >= nw.maxIterations)
+            continue;   // converged (or out of iterations): no new matrix needed
+        if (!residual(u, true, norm, ref)) {
+            report.message = "inadmissible deformation after a Newton step";
+            return false;
+        }
+    }
+}
+
+SolveReport StructuralSolver::solve(const material::TimeStep& step, const InterfaceLoads& interface,
+                                    double loadFactor)
+{
+    if (!(step.dt >= 0.0))
+        throw std::runtime_error("StructuralSolver::solve: dt must be >= 0");
+    step_ = step;
+    std::vector<double> fTarget;
+    buildExternalLoads(loadFactor, interface, fTarget);
+    SolveReport report;
+    // attempt 0: the full step from the last converged state (warm start)
+    std::vector<double> u = lastConverged_ ? u_ : uCommitted_;
+    fextLast_ = fTarget;
+    factorLast_ = loadFactor;
+    if (newton(fTarget, loadFactor, u, report)) {
+        u_ = u;
+        lastConverged_ = true;
+        report.converged = true;
+        return report;
+    }
+    // sub-stepping from the committed state: loads ramped from the committed ones
+    std::string firstFailure = report.message;
+    int iterations = report.newtonIterations;
+    for (int cuts = 1; cuts <= problem_.newton.maxLoadCuts; ++cuts) {
+        const int steps = 1 << cuts;
+        if (problem_.printIterations && rank_ == 0)
+            std::printf("    %s -> retrying in %d load sub-steps\n", report.message.c_str(), steps);
+        u = uCommitted_;
+        bool ok = true;
+        std::vector<double> f(numDofs());
+        for (int s = 1; s <= steps && ok; ++s) {
+            const double lambda = static_cast<double>(s) / steps;
+            for (int dof = 0; dof < numDofs(); ++dof)
+                f[dof] = fextCommitted_[dof] + lambda * (fTarget[dof] - fextCommitted_[dof]);
+            SolveReport sub;
+            ok = newton(f, factorCommitted_ + lambda * (loadFactor - factorCommitted_), u, sub);
+            iterations += sub.newtonIterations;
+            report.residuals = sub.residuals;
+            report.finalResidual = sub.finalResidual;
+            report.referenceForce = sub.referenceForce;
+            report.message = sub.message;
+        }
+        if (ok) {
+            u_ = u;
+            lastConverged_ = true;
+            report.converged = true;
+            report.loadCuts = cuts;
+            report.newtonIterations = iterations;
+            report.message = "converged after load sub-stepping (" + firstFailure + ")";
+            return report;
+        }
+    }
+    report.newtonIterations = iterations;
+    report.loadCuts = problem_.newton.maxLoadCuts;
+    report.converged = false;
+    lastConverged_ = false;
+    if (report.message.empty())
+        report.message = firstFailure;
+    return report;
+}
+
+void StructuralSolver::acceptLevel()
+{
+    if (!lastConverged_)
+        throw std::runtime_error("StructuralSolver::acceptLevel: the last solve did not converge");
+    const std::size_t hs = law_.historySize();
+    if (hs) {
+        std::vector<double> next(committedHistory_.size());
+        const auto& cells = mesh_.cells;
+        for (std::size_t k = 0; k < ownCells_.size(); ++k) {
+            const int c = ownCells_[k];
+            const int n = cells.numNodes(c);
+            CellQuadrature cq{n, pointOffset_[k + 1] - pointOffset_[k], quad_.data() + quadOffset_[k]};
+            Eigen::Matrix3Xd ue(3, n);
+            for (int a = 0; a < n; ++a)
+                for (int i = 0; i < 3; ++i)
+                    ue(i, a) = u_[3 * cells.nodes(c)[a] + i];
+            for (int q = 0; q < cq.numPoints; ++q) {
+                const Vector6 strain = strainFromF(deformationGradient(cq, q, ue), problem_.kinematics);
+                const std::size_t p = static_cast<std::size_t>(pointOffset_[k] + q) * hs;
+                law_.updateHistory(strain, step_, committedHistory_.data() + p, next.data() + p);
+            }
+        }
+        committedHistory_.swap(next);
+    }
+    uCommitted_ = u_;
+    fextCommitted_ = fextLast_;
+    factorCommitted_ = factorLast_;
+}
+
+void StructuralSolver::rejectLevel()
+{
+    u_ = uCommitted_;
+    lastConverged_ = true;
+}
+
+std::vector<double> StructuralSolver::wettedNodeCoordinates() const
+{
+    std::vector<double> x;
+    for (int node : wettedNodes_)
+        for (int i = 0; i < 3; ++i)
+            x.push_back(mesh_.nodes(i, node));
+    return x;
+}
+
+std::vector<double> StructuralSolver::wettedNodeDisplacements() const
+{
+    std::vector<double> d;
+    for (int node : wettedNodes_)
+        for (int i = 0; i < 3; ++i)
+            d.push_back(u_[3 * node + i]);
+    return d;
+}
+
+void StructuralSolver::cauchyStress(std::vector<Vector6>& nodal, std::vector<Vector6>& cellStress) const
+{
+    const auto& cells = mesh_.cells;
+    const std::size_t hs = law_.historySize();
+    std::vector<double> nodeSum(7 * mesh_.numNodes(), 0.0), cellSum(6 * cells.size(), 0.0);
+    Vector6 stress;
+    material::Matrix6 D;
+    for (std::size_t k = 0; k < ownCells_.size(); ++k) {
+        const int c = ownCells_[k];
+        const int n = cells.numNodes(c);
+        CellQuadrature cq{n, pointOffset_[k + 1] - pointOffset_[k], quad_.data() + quadOffset_[k]};
+        Eigen::Matrix3Xd ue(3, n);
+        for (int a = 0; a < n; ++a)
+            for (int i = 0; i < 3; ++i)
+                ue(i, a) = u_[3 * cells.nodes(c)[a] + i];
+        Vector6 mean = Vector6::Zero();
+        double volume = 0.0;
+        for (int q = 0; q < cq.numPoints; ++q) {
+            const Eigen::Matrix3d F = deformationGradient(cq, q, ue);
+            try {
+                law_.evaluate(strainFromF(F, problem_.kinematics), step_,
+                              hs ? committedHistory_.data() + (pointOffset_[k] + q) * hs : nullptr, stress, D);
+            } catch (const material::InadmissibleDeformation&) {
+                stress.setConstant(std::nan(""));
+            }
+            mean += cq.weight(q) * cauchyFromMaterialStress(stress, F, problem_.kinematics);
+            volume += cq.weight(q);
+        }
+        for (int i = 0; i < 6; ++i)
+            cellSum[6 * c + i] = mean[i] / volume;
+        for (int a = 0; a < n; ++a) {
+            for (int i = 0; i < 6; ++i)
+                nodeSum[7 * cells.nodes(c)[a] + i] += mean[i];
+            nodeSum[7 * cells.nodes(c)[a] + 6] += volume;
+        }
+    }
+    if (size_ > 1) {
+        MPI_Allreduce(MPI_IN_PLACE, nodeSum.data(), static_cast<int>(nodeSum.size()), MPI_DOUBLE, MPI_SUM, comm_);
+        MPI_Allreduce(MPI_IN_PLACE, cellSum.data(), static_cast<int>(cellSum.size()), MPI_DOUBLE, MPI_SUM, comm_);
+    }
+    nodal.assign(mesh_.numNodes(), Vector6::Zero());
+    cellStress.assign(cells.size(), Vector6::Zero());
+    for (int node = 0; node < mesh_.numNodes(); ++node)
+        for (int i = 0; i < 6; ++i)
+            nodal[node][i] = nodeSum[7 * node + 6] > 0 ? nodeSum[7 * node + i] / nodeSum[7 * node + 6] : 0.0;
+    for (int c = 0; c < cells.size(); ++c)
+        for (int i = 0; i < 6; ++i)
+            cellStress[c][i] = cellSum[6 * c + i];
+}
+
+} // namespace fsi::fe

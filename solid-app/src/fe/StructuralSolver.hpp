@@ -1,0 +1,177 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Quasi-static structural solver: equilibrium div(sigma) + rho b = 0 at each time level,
+// Newton with the consistent tangent, MUMPS through linalg::SparseDirectSolver.
+//
+// Use by a coupling driver (all calls collective on the communicator):
+//   fe::StructuralSolver solid(comm, mesh, *law, problem);
+//   auto x = solid.wettedNodeCoordinates();               // 3 per wetted node [m], fixed order
+//   for each time level (time t, dt):
+//     do {                                                 // coupling iterations
+//       fe::InterfaceLoads f{forcesAtWettedNodes};         // [N], same order as x
+//       auto report = solid.solve({t, dt}, f);             // re-solvable: history untouched
+//       if (!report.converged) ...                         // never silently accepted
+//       auto u = solid.wettedNodeDisplacements();          // [m]
+//     } while (!couplingConverged);
+//     solid.acceptLevel();                                 // commits material history + state
+//
+// Level semantics: solve() may be called any number of times for the same level; each call
+// starts from the last converged solution (warm start) and evaluates the material with the
+// history committed by the last acceptLevel(). acceptLevel() requires the last solve to have
+// converged (throws otherwise). Loads given to solve() REPLACE those of the previous call.
+#pragma once
+#include "linalg/SparseDirectSolver.hpp"
+#include "material/Material.hpp"
+#include "mesh/Mesh.hpp"
+
+#include <Eigen/Dense>
+#include <mpi.h>
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace fsi::fe {
+
+struct NewtonSettings
+{
+    int maxIterations = 25;
+    double residualTolerance = 1e-8;   // ||R_free|| <= rtol * max(||f_ext||, ||f_int||) + atol
+    double absoluteTolerance = 1e-10;  // [N]
+    bool lineSearch = true;            // backtracking on ||R|| (halving, up to 1/16)
+    int maxLoadCuts = 6;               // failed level: retry in 2, 4, ... 2^k load sub-steps
+};
+
+struct PrescribedDisplacement
+{
+    std::string surface;
+    std::array<std::optional<double>, 3> value;   // [m]; unset components are free
+};
+
+struct SurfaceTraction
+{
+    std::string surface;
+    Eigen::Vector3d traction = Eigen::Vector3d::Zero();   // [Pa] per reference area, dead load
+};
+
+struct SurfaceForce
+{
+    std::string surface;
+    Eigen::Vector3d total = Eigen::Vector3d::Zero();      // [N], spread as a uniform traction
+};
+
+// What is fixed and loaded; every surface name must be a group of the mesh.
+struct ProblemDefinition
+{
+    material::Kinematics kinematics = material::Kinematics::SmallStrain;
+    double density = 0.0;                                   // [kg/m^3]
+    Eigen::Vector3d gravity = Eigen::Vector3d::Zero();      // [m/s^2]
+    std::vector<std::string> clamped;                       // all dofs fixed
+    std::string wetted;                                     // interface surface ("" = none)
+    std::vector<PrescribedDisplacement> displacements;
+    std::vector<SurfaceTraction> tractions;
+    std::vector<SurfaceForce> forces;
+    NewtonSettings newton;
+    int linearSolverVerbosity = 0;
+    bool printIterations = false;                           // rank 0 prints Newton progress
+};
+
+// Forces from the coupling: 3 per wetted node [N] in wettedNodeCoordinates() order
+// (empty: none). Not scaled by the load factor.
+struct InterfaceLoads
+{
+    std::vector<double> forces;
+};
+
+struct SolveReport
+{
+    bool converged = false;
+    int newtonIterations = 0;          // total over sub-steps
+    int loadCuts = 0;                  // 0: one step; k: 2^k sub-steps were needed
+    double initialResidual = 0.0;      // [N], free dofs
+    double finalResidual = 0.0;        // [N]
+    double referenceForce = 0.0;       // [N], the rtol reference
+    std::vector<double> residuals;     // per Newton iteration of the successful attempt
+    std::string message;               // why it failed / how it converged
+};
+
+class StructuralSolver
+{
+public:
+    // mesh and law must outlive the solver (not owned). Throws std::runtime_error for groups
+    // missing in the mesh or an over-/under-constrained setup.
+    StructuralSolver(MPI_Comm comm, const mesh::Mesh& mesh, const material::Material& law,
+                     ProblemDefinition problem);
+    ~StructuralSolver();
+
+    // Equilibrium at level `step` with the configured loads times loadFactor plus the
+    // interface forces. Warm-started; commits nothing. Collective.
+    SolveReport solve(const material::TimeStep& step, const InterfaceLoads& interface = {},
+                      double loadFactor = 1.0);
+    // Commits the last converged solve (material history, displacement, loads). Throws if the
+    // last solve did not converge.
+    void acceptLevel();
+    // Back to the last accepted state (e.g. after a failed coupling level).
+    void rejectLevel();
+
+    // Replicated on every rank.
+    const std::vector<double>& displacement() const { return u_; }   // 3 per node [m]
+    std::vector<double> wettedNodeCoordinates() const;                // 3 per node [m]
+    std::vector<double> wettedNodeDisplacements() const;              // 3 per node [m]
+    const std::vector<int>& wettedNodes() const { return wettedNodes_; }
+    // Nodal (volume-averaged) and cell-averaged Cauchy stress, Voigt tensor shear [Pa], at the
+    // last solved state; replicated on every rank.
+    void cauchyStress(std::vector<material::Vector6>& nodal, std::vector<material::Vector6>& cells) const;
+
+    const mesh::Mesh& mesh() const { return mesh_; }
+    int numDofs() const { return 3 * mesh_.numNodes(); }
+    int numFreeDofs() const { return numFree_; }
+    int factorizationCount() const;
+    int analysisCount() const;
+    int rank() const { return rank_; }
+    int ranks() const { return size_; }
+    int ownedCells() const { return static_cast<int>(ownCells_.size()); }
+
+private:
+    struct Attempt;
+    bool assemble(const std::vector<double>& u, bool withMatrix, std::vector<double>& fint);
+    void buildExternalLoads(double factor, const InterfaceLoads& interface, std::vector<double>& f) const;
+    void applyPrescribed(double factor, std::vector<double>& u) const;
+    bool newton(const std::vector<double>& fext, double factor, std::vector<double>& u,
+                SolveReport& report);
+    double freeNorm(const std::vector<double>& v) const;
+
+    MPI_Comm comm_;
+    int rank_ = 0, size_ = 1;
+    const mesh::Mesh& mesh_;
+    const material::Material& law_;
+    ProblemDefinition problem_;
+    material::TimeStep step_{};
+
+    std::vector<int> ownCells_;
+    std::vector<std::size_t> quadOffset_;     // per own cell into quad_
+    std::vector<int> pointOffset_;            // per own cell: first integration point
+    std::vector<double> quad_;
+    std::vector<double> committedHistory_;    // own points x historySize
+
+    std::vector<int> equation_;               // dof -> free equation number or -1
+    int numFree_ = 0;
+    std::vector<int> prescribedDofs_;
+    std::vector<double> prescribedValues_;    // at load factor 1
+    std::vector<int> wettedNodes_;
+
+    std::unique_ptr<linalg::SparseDirectSolver> linear_;
+    struct Pattern;
+    std::unique_ptr<Pattern> pattern_;
+    std::vector<double> values_;
+
+    std::vector<double> u_, uCommitted_;
+    std::vector<double> fextCommitted_;
+    double factorCommitted_ = 0.0;
+    std::vector<double> fextLast_;
+    double factorLast_ = 0.0;
+    bool lastConverged_ = false;
+};
+
+} // namespace fsi::fe

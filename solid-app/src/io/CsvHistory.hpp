@@ -1,0 +1,33 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// CSV histories of watched points: the node nearest to each requested coordinate.
+// Columns: time, then <name>_ux, <name>_uy, <name>_uz per point [s, m]. Rewritten
+// atomically after each level (small files), so it is always complete.
+#pragma once
+#include "mesh/Mesh.hpp"
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace fsi::io {
+
+class CsvHistory
+{
+public:
+    CsvHistory(std::string path, const mesh::Mesh& mesh, const std::vector<std::string>& names,
+               const std::vector<std::array<double, 3>>& points);
+    // Records the displacement (3 per node) at time t and rewrites the file.
+    void record(double time, const std::vector<double>& displacement);
+    int node(std::size_t k) const { return nodes_[k]; }
+    // Distance from the requested point to its node [m].
+    double distance(std::size_t k) const { return distances_[k]; }
+
+private:
+    std::string path_;
+    std::string header_;
+    std::vector<int> nodes_;
+    std::vector<double> distances_;
+    std::string rows_;
+};
+
+} // namespace fsi::io
