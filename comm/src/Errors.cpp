@@ -31,11 +31,14 @@ void abortRun(int exitCode)
     std::_Exit(exitCode);
 }
 
-void exitOnError(const std::exception& error, Channel* channel)
+void exitOnError(const std::exception& error, Channel* channel, ErrorScope scope)
 {
     const auto* commError = dynamic_cast<const CommError*>(&error);
-    const bool everyRank = commError && commError->everyRank();
-    if (!everyRank || commError->localRank() == 0)
+    const bool everyRank = (commError && commError->everyRank()) || scope == ErrorScope::AllRanks;
+    const int localRank = commError && commError->everyRank() ? commError->localRank()
+                          : channel                          ? channel->localRank()
+                                                             : 0;
+    if (!everyRank || localRank == 0)
         std::fprintf(stderr, "error: %s\n", error.what());
     std::fflush(stderr);
 

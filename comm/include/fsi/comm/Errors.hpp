@@ -60,14 +60,26 @@ private:
     std::string reason_;
 };
 
-// Call from the catch block in main. Prints "error: <what>" to stderr (once per side for
-// errors raised on every rank, otherwise from the rank that caught it) and ends the process:
-//  - TimeoutError or any error when channel is null / unusable: MPI_Abort(real world, code);
-//  - PeerAbortError / ProtocolError / other std::exception with a channel: sends Abort(what)
+// Whether every rank of this program caught the same error at the same point (e.g. a config
+// check done on all ranks) or possibly only this rank.
+enum class ErrorScope
+{
+    ThisRank,
+    AllRanks,
+};
+
+// Call from the catch block in main. Prints "error: <what>" to stderr (once per program when
+// the error is on every rank, otherwise from each rank that caught it) and ends the process:
+//  - TimeoutError, or an error not on every rank: tells the peer (best effort, bounded) and
+//    calls MPI_Abort on the real MPI_COMM_WORLD with the exit code (mpirun stops the job);
+//  - an error on every rank (CommError::everyRank() or scope == AllRanks): sends Abort(what)
 //    to the peer unless the peer aborted first, closes the channel, finalises MPI and exits
-//    with the code (kExitPeerAbort for PeerAbortError, kExitError otherwise).
-// channel may be null (error before the coupling existed).
-[[noreturn]] void exitOnError(const std::exception& error, Channel* channel);
+//    with the code, so that both programs print their own message.
+// Exit codes: kExitCommTimeout for TimeoutError, kExitPeerAbort for PeerAbortError, else
+// kExitError. channel may be null (error before the coupling existed); keep the Channel alive
+// outside the try block (std::optional<Channel>) so it can be passed here.
+[[noreturn]] void exitOnError(const std::exception& error, Channel* channel,
+                              ErrorScope scope = ErrorScope::ThisRank);
 
 // Ends the process: flushes stdio, then MPI_Abort on the real MPI_COMM_WORLD when MPI is
 // running, otherwise std::_Exit. Never returns.
