@@ -1,0 +1,94 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// The quasi-steady coupling loop (the paper's figure 4), run by solid-app. Per time level:
+//   u_0 = predictor (from past levels);  accelerator.beginLevel()
+//   iterate i = 1, 2, ...:
+//     map u_{i-1} (solid wetted nodes) -> fluid points (consistent), fluid solves the steady flow
+//     map face forces -> solid wetted nodes (conservative), solid solves equilibrium -> u_hat_i
+//     r_i = u_hat_i - u_{i-1}; converged when |r_i|/sqrt(n) < eps (and/or relative criterion)
+//     u_i = accelerator.update(u_{i-1}, u_hat_i)
+//   on convergence: commit the material history, the fluid writes its fields, outputs are written.
+// A level that hits max_iterations stops the run (unless on_max_iterations: continue, which
+// logs it loudly); NaN or a residual growing past divergence_factor stops the level with a
+// diagnosis. Collective on the solid communicator; only rank 0 talks to the fluid.
+#pragma once
+
+#include "acceleration/Accelerator.hpp"
+#include "driver/CouplingParameters.hpp"
+#include "driver/FluidPeer.hpp"
+#include "fe/StructuralSolver.hpp"
+#include "mapping/Mapping.hpp"
+
+#include <mpi.h>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace fsi::driver
+{
+
+// A named structural point whose displacement goes into the history (nearest mesh node).
+struct WatchedNode
+{
+    std::string name;
+    int node = -1;
+};
+
+struct LevelRecord
+{
+    int level = 0;
+    double time = 0.0;          // [s]
+    double dt = 0.0;            // [s]
+    int couplingIterations = 0;
+    int fluidIterations = 0;    // summed over the level's coupling iterations
+    int newtonIterations = 0;   // summed
+    double residual = 0.0;      // |r|/sqrt(n) at acceptance [m]
+    bool converged = false;
+    Eigen::Vector3d force = Eigen::Vector3d::Zero(); // total fluid force on the structure [N]
+    std::vector<Eigen::Vector3d> watched;            // displacement of each watched node [m]
+    double sectionAngle = 0.0;  // [deg] (if configured)
+    double relativeChange = 0.0; // |u_n - u_{n-1}| / |u_n| of the interface displacement
+    double wallSeconds = 0.0;   // since the start of the run
+};
+
+struct RunSummary
+{
+    int levels = 0;
+    int couplingIterations = 0;
+    int fluidIterations = 0;
+    int factorizations = 0;
+    double wallSeconds = 0.0;
+    double fluidSeconds = 0.0, solidSeconds = 0.0, mappingSeconds = 0.0;
+    std::vector<LevelRecord> history;
+};
+
+class CoupledDriver
+{
+public:
+    // solid: the structural solver (not owned, outlives the driver). fluid: non-null on rank 0
+    // of `comm` only (not owned). outputFolder: where coupling.csv, history.csv and
+    // interface/ are written (rank 0; created if missing). relaxationTimes: the material's
+    // Prony tau_i (empty: elastic) for the adaptive time schedule.
+    CoupledDriver(MPI_Comm comm, fe::StructuralSolver& solid, FluidPeer* fluid,
+                  CouplingParameters params, std::string outputFolder,
+                  std::vector<double> relaxationTimes, std::vector<WatchedNode> watched = {});
+    ~CoupledDriver();
+
+    // Called on every rank after each accepted level (e.g. to write VTU).
+    void onLevelAccepted(std::function<void(const LevelRecord&)> callback);
+    // Prints one progress line per level and per coupling iteration on rank 0 (default on).
+    void setVerbose(bool verbose) { verbose_ = verbose; }
+
+    // Runs all levels. Throws std::runtime_error (one line) when a level fails; before throwing
+    // the fluid is told to abort with the same reason.
+    RunSummary run();
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+    bool verbose_ = true;
+};
+
+} // namespace fsi::driver

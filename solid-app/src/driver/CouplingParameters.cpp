@@ -1,0 +1,255 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "driver/CouplingParameters.hpp"
+
+#include "config/YamlReader.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace fsi::driver
+{
+
+namespace
+{
+
+// A coefficients block may only be given for the selected strategy.
+void onlySelectedCoefficients(const config::Block& b, const std::string& type,
+                              const std::vector<std::string>& strategies)
+{
+    for (const auto& s : strategies)
+        if (s != type && b.has(s))
+            b.fail(s, "coefficients for '" + s + "' but type is '" + type +
+                          "': remove the block or change type");
+}
+
+acceleration::AcceleratorParameters parseAcceleration(const config::Block& b)
+{
+    const std::vector<std::string> types{"constant", "aitken", "iqn-ils"};
+    b.allowOnly({"type", "constant", "aitken", "iqn-ils"});
+    acceleration::AcceleratorParameters p;
+    p.type = b.choice("type", types);
+    onlySelectedCoefficients(b, p.type, types);
+    if (p.type == "constant")
+    {
+        auto c = b.block("constant");
+        c.allowOnly({"relaxation"});
+        p.constant.relaxation = c.number("relaxation");
+    }
+    else if (p.type == "aitken")
+    {
+        auto c = b.block("aitken");
+        c.allowOnly({"initial_relaxation", "initial", "max_relaxation", "min_relaxation"});
+        p.aitken.initialRelaxation = c.number("initial_relaxation");
+        p.aitken.initial = c.choice("initial", {"reset", "carry-over"}, "reset");
+        p.aitken.maxRelaxation = c.number("max_relaxation", p.aitken.maxRelaxation);
+        p.aitken.minRelaxation = c.number("min_relaxation", p.aitken.minRelaxation);
+    }
+    else
+    {
+        auto c = b.block("iqn-ils");
+        c.allowOnly({"initial_relaxation", "max_columns", "reuse_levels", "filter",
+                     "filter_tolerance"});
+        p.iqnIls.initialRelaxation = c.number("initial_relaxation");
+        p.iqnIls.maxColumns = c.integer("max_columns", p.iqnIls.maxColumns);
+        p.iqnIls.reuseLevels = c.integer("reuse_levels", p.iqnIls.reuseLevels);
+        p.iqnIls.filter = c.choice("filter", {"qr-column", "qr-matrix"}, p.iqnIls.filter);
+        p.iqnIls.filterTolerance = c.number("filter_tolerance", p.iqnIls.filterTolerance);
+    }
+    try
+    {
+        p.validate();
+    }
+    catch (const std::exception& e)
+    {
+        b.fail("type", e.what());
+    }
+    return p;
+}
+
+mapping::MappingParameters parseMapping(const config::Block& b)
+{
+    const std::vector<std::string> types{"nearest-neighbour", "rbf-thin-plate", "rbf-wendland-c2"};
+    b.allowOnly({"type", "overlap_tolerance", "rbf-thin-plate", "rbf-wendland-c2"});
+    mapping::MappingParameters p;
+    p.type = b.choice("type", types);
+    onlySelectedCoefficients(b, p.type, types);
+    p.overlapTolerance = b.number("overlap_tolerance", p.overlapTolerance);
+    if (p.type == "rbf-wendland-c2")
+    {
+        auto c = b.block("rbf-wendland-c2");
+        c.allowOnly({"support_radius"});
+        p.wendland.supportRadius = c.number("support_radius");
+    }
+    else if (p.type == "rbf-thin-plate" && b.has("rbf-thin-plate"))
+    {
+        auto c = b.block("rbf-thin-plate");
+        c.allowOnly({"max_source_points"});
+        p.thinPlate.maxSourcePoints = c.integer("max_source_points");
+    }
+    try
+    {
+        p.validate();
+    }
+    catch (const std::exception& e)
+    {
+        b.fail("type", e.what());
+    }
+    return p;
+}
+
+TimeScheduleParameters parseTime(const config::Block& b)
+{
+    TimeScheduleParameters p;
+    p.type = b.choice("type", {"steady", "list", "geometric", "adaptive"});
+    if (p.type == "steady")
+        b.allowOnly({"type"});
+    else if (p.type == "list")
+    {
+        b.allowOnly({"type", "times"});
+        p.times = b.numbers("times");
+    }
+    else if (p.type == "geometric")
+    {
+        b.allowOnly({"type", "end", "first_step", "growth", "max_step", "hit"});
+        p.end = b.number("end");
+        p.firstStep = b.number("first_step");
+        p.growth = b.number("growth", p.growth);
+        p.maxStep = b.number("max_step", 0.0);
+        if (b.has("hit"))
+            p.hit = b.numbers("hit");
+    }
+    else
+    {
+        b.allowOnly({"type", "end", "first_step", "min_step", "max_step", "target_change",
+                     "growth_limit", "shrink_limit", "hit"});
+        p.end = b.number("end");
+        p.firstStep = b.number("first_step", 0.0);
+        p.minStep = b.number("min_step", 0.0);
+        p.maxStep = b.number("max_step", 0.0);
+        p.targetChange = b.number("target_change", p.targetChange);
+        p.growthLimit = b.number("growth_limit", p.growthLimit);
+        p.shrinkLimit = b.number("shrink_limit", p.shrinkLimit);
+        if (b.has("hit"))
+            p.hit = b.numbers("hit");
+    }
+    try
+    {
+        p.validate();
+    }
+    catch (const std::exception& e)
+    {
+        // e.what() already names coupling.time.<key>
+        throw std::runtime_error(b.file() + ": " + e.what());
+    }
+    return p;
+}
+
+} // namespace
+
+CouplingParameters CouplingParameters::parse(const config::Block& b)
+{
+    b.allowOnly({"launch", "max_iterations", "on_max_iterations", "divergence_factor", "predictor",
+                 "convergence", "acceleration", "mapping", "time", "section_angle"});
+    CouplingParameters p;
+    if (auto l = b.optionalBlock("launch"))
+    {
+        l->allowOnly({"mode", "port_file", "timeout"});
+        p.launch.mode = l->choice("mode", {"mpmd", "port"}, p.launch.mode);
+        p.launch.portFile = l->text("port_file", p.launch.portFile);
+        p.launch.timeout = l->number("timeout", p.launch.timeout);
+        if (!(p.launch.timeout > 0))
+            l->fail("timeout", "must be > 0 s");
+    }
+    p.maxIterations = b.integer("max_iterations", p.maxIterations);
+    if (p.maxIterations < 1)
+        b.fail("max_iterations", "must be >= 1");
+    p.continueOnMaxIterations = b.choice("on_max_iterations", {"stop", "continue"}, "stop") == "continue";
+    p.divergenceFactor = b.number("divergence_factor", p.divergenceFactor);
+    if (!(p.divergenceFactor > 1))
+        b.fail("divergence_factor", "must be > 1");
+    p.predictor = b.choice("predictor", {"constant", "linear"}, p.predictor);
+
+    auto c = b.block("convergence");
+    c.allowOnly({"absolute_tolerance", "relative_tolerance"});
+    p.convergence.absoluteTolerance = c.number("absolute_tolerance", 0.0);
+    p.convergence.relativeTolerance = c.number("relative_tolerance", 0.0);
+    try
+    {
+        p.convergence.validate();
+    }
+    catch (const std::exception& e)
+    {
+        c.fail("absolute_tolerance", e.what());
+    }
+    p.acceleration = parseAcceleration(b.block("acceleration"));
+    p.mapping = parseMapping(b.block("mapping"));
+    if (auto t = b.optionalBlock("time"))
+        p.time = parseTime(*t);
+    if (auto s = b.optionalBlock("section_angle"))
+    {
+        s->allowOnly({"name", "leading_edge", "trailing_edge", "lift_direction"});
+        SectionAngleParameters a;
+        a.name = s->text("name", a.name);
+        a.leadingEdge = s->vector3("leading_edge");
+        a.trailingEdge = s->vector3("trailing_edge");
+        a.liftDirection = s->vector3("lift_direction");
+        double n = std::sqrt(a.liftDirection[0] * a.liftDirection[0] +
+                             a.liftDirection[1] * a.liftDirection[1] +
+                             a.liftDirection[2] * a.liftDirection[2]);
+        if (!(n > 0))
+            s->fail("lift_direction", "must be a non-zero vector");
+        for (double& x : a.liftDirection)
+            x /= n;
+        p.sectionAngle = a;
+    }
+    return p;
+}
+
+std::string CouplingParameters::echo() const
+{
+    std::ostringstream s;
+    s << "coupling:\n"
+      << "  launch: {mode: " << launch.mode << ", port_file: " << launch.portFile
+      << ", timeout: " << launch.timeout << "}\n"
+      << "  max_iterations: " << maxIterations << "\n"
+      << "  on_max_iterations: " << (continueOnMaxIterations ? "continue" : "stop") << "\n"
+      << "  divergence_factor: " << divergenceFactor << "\n"
+      << "  predictor: " << predictor << "\n"
+      << "  convergence: {absolute_tolerance: " << convergence.absoluteTolerance
+      << ", relative_tolerance: " << convergence.relativeTolerance << "}\n"
+      << "  acceleration:\n    type: " << acceleration.type << "\n";
+    if (acceleration.type == "constant")
+        s << "    constant: {relaxation: " << acceleration.constant.relaxation << "}\n";
+    else if (acceleration.type == "aitken")
+        s << "    aitken: {initial_relaxation: " << acceleration.aitken.initialRelaxation
+          << ", initial: " << acceleration.aitken.initial
+          << ", max_relaxation: " << acceleration.aitken.maxRelaxation
+          << ", min_relaxation: " << acceleration.aitken.minRelaxation << "}\n";
+    else
+        s << "    iqn-ils: {initial_relaxation: " << acceleration.iqnIls.initialRelaxation
+          << ", max_columns: " << acceleration.iqnIls.maxColumns
+          << ", reuse_levels: " << acceleration.iqnIls.reuseLevels
+          << ", filter: " << acceleration.iqnIls.filter
+          << ", filter_tolerance: " << acceleration.iqnIls.filterTolerance << "}\n";
+    s << "  mapping:\n    type: " << mapping.type << "\n    overlap_tolerance: "
+      << mapping.overlapTolerance << "\n";
+    if (mapping.type == "rbf-wendland-c2")
+        s << "    rbf-wendland-c2: {support_radius: " << mapping.wendland.supportRadius << "}\n";
+    s << "  time: {type: " << time.type;
+    if (time.type == "list")
+    {
+        s << ", times: [";
+        for (std::size_t i = 0; i < time.times.size(); ++i)
+            s << (i ? ", " : "") << time.times[i];
+        s << "]";
+    }
+    else if (time.type != "steady")
+        s << ", end: " << time.end << ", first_step: " << time.firstStep
+          << ", max_step: " << time.maxStep;
+    s << "}\n";
+    if (sectionAngle)
+        s << "  section_angle: {name: " << sectionAngle->name << "}\n";
+    return s.str();
+}
+
+} // namespace fsi::driver
