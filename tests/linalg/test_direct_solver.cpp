@@ -77,20 +77,22 @@ struct Laplacian
     Triplets localTriplets(int r, int s) const
     {
         Triplets t;
-        forEachEntry([&](int row, int col, double v) {
-            if (row != col)
+        forEachEntry(
+            [&](int row, int col, double v)
             {
-                if (row % s == r)
-                    t.add(row, col, v);
-            }
-            else
-            {
-                if (row % s == r)
-                    t.add(row, col, 2.0);
-                if (row % s == (r + s - 1) % s) // the next rank holds the rest
-                    t.add(row, col, v - 2.0);
-            }
-        });
+                if (row != col)
+                {
+                    if (row % s == r)
+                        t.add(row, col, v);
+                }
+                else
+                {
+                    if (row % s == r)
+                        t.add(row, col, 2.0);
+                    if (row % s == (r + s - 1) % s) // the next rank holds the rest
+                        t.add(row, col, v - 2.0);
+                }
+            });
         return t;
     }
 
@@ -177,11 +179,12 @@ TEST_P(DirectSolve, ManufacturedLaplacian)
     EXPECT_GT(solver.factorEntryCount(), a.size());
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Options, DirectSolve,
-    ::testing::Values(Case{true, true, Ordering::Metis}, Case{true, false, Ordering::Metis},
-                      Case{true, false, Ordering::Amd}, Case{true, true, Ordering::Pord},
-                      Case{false, false, Ordering::Metis}));
+INSTANTIATE_TEST_SUITE_P(Options, DirectSolve,
+                         ::testing::Values(Case{true, true, Ordering::Metis},
+                                           Case{true, false, Ordering::Metis},
+                                           Case{true, false, Ordering::Amd},
+                                           Case{true, true, Ordering::Pord},
+                                           Case{false, false, Ordering::Metis}));
 
 TEST(DirectSolver, ReusesFactorizationWhenValuesAreUnchanged)
 {
@@ -265,7 +268,6 @@ TEST(DirectSolver, NeumannLaplacianNamesTheClampedBoundary)
     }
     EXPECT_EQ(solver.factorizationCount(), 0);
 }
-
 
 TEST(DirectSolver, ZeroRowIsSingular)
 {

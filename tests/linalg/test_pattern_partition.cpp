@@ -21,10 +21,14 @@ std::vector<std::vector<int>> cubeMesh(int m, bool tets)
         for (int j = 0; j < m; ++j)
             for (int i = 0; i < m; ++i)
             {
-                const int v[8] = {node(i, j, k),         node(i + 1, j, k),
-                                  node(i + 1, j + 1, k), node(i, j + 1, k),
-                                  node(i, j, k + 1),     node(i + 1, j, k + 1),
-                                  node(i + 1, j + 1, k + 1), node(i, j + 1, k + 1)};
+                const int v[8] = {node(i, j, k),
+                                  node(i + 1, j, k),
+                                  node(i + 1, j + 1, k),
+                                  node(i, j + 1, k),
+                                  node(i, j, k + 1),
+                                  node(i + 1, j, k + 1),
+                                  node(i + 1, j + 1, k + 1),
+                                  node(i, j + 1, k + 1)};
                 if (!tets)
                 {
                     elements.push_back({v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7]});

@@ -38,8 +38,7 @@ void expectError(const std::function<void(MaterialParameters&)>& edit, const std
     catch (const std::runtime_error& e)
     {
         const std::string message = e.what();
-        EXPECT_NE(message.find("solid.yaml: material." + key + " "), std::string::npos)
-            << message;
+        EXPECT_NE(message.find("solid.yaml: material." + key + " "), std::string::npos) << message;
         EXPECT_EQ(message.find('\n'), std::string::npos) << "one line: " << message;
     }
 }
@@ -109,7 +108,8 @@ TEST(Parameters, ValidationNamesTheKey)
     expectError([](auto& p) { p.youngsModulus.reset(); }, "E");
     expectError([](auto& p) { p.bulkModulus = 1e9; }, "E");
     expectError(
-        [](auto& p) {
+        [](auto& p)
+        {
             p.youngsModulus.reset();
             p.poissonRatio.reset();
             p.bulkModulus = 1e9;
@@ -117,7 +117,8 @@ TEST(Parameters, ValidationNamesTheKey)
         },
         "G");
     expectError(
-        [](auto& p) {
+        [](auto& p)
+        {
             p.youngsModulus.reset();
             p.poissonRatio.reset();
             p.shearModulus = 1e6;
@@ -132,7 +133,8 @@ TEST(Parameters, ValidationNamesTheKey)
     expectError([](auto& p) { p.pronyConvention = "gamma"; }, "prony.convention");
     expectError([](auto& p) { p.modulusBasis.clear(); }, "modulus_basis");
     expectError(
-        [](auto& p) {
+        [](auto& p)
+        {
             p.pronyConvention = "abaqus-g";
             p.pronyCoefficients = {0.5, 0.3, 0.2};
         },
@@ -141,7 +143,8 @@ TEST(Parameters, ValidationNamesTheKey)
     expectError([](auto& p) { p.type = "hyperelastic"; }, "type");
     expectError([](auto& p) { p.type = "linear-elastic"; }, "prony");
     expectError(
-        [](auto& p) {
+        [](auto& p)
+        {
             p.type = "linear-elastic";
             p.pronyConvention.clear();
             p.pronyCoefficients.clear();

@@ -44,7 +44,10 @@ MaterialParameters referenceLongTerm()
 }
 
 // G(t) of the reference material [Pa].
-double exactG(double t) { return relaxationModulus(0.5e6, {0.6, 0.4}, {0.1, 10.0}, t); }
+double exactG(double t)
+{
+    return relaxationModulus(0.5e6, {0.6, 0.4}, {0.1, 10.0}, t);
+}
 
 // Ramp (0 -> gamma0 over tr) and hold, closed form of prony.md.
 double rampHoldStress(double t, double gamma0, double tr)
@@ -180,7 +183,8 @@ TEST(Creep, ReproducesTableWithModestStep)
     const double tau0 = 1e4;
     const auto law = makeMaterial(referenceAbaqus(), Kinematics::SmallStrain);
     MaterialPoint point(*law);
-    auto solveLevel = [&](double t) -> double {
+    auto solveLevel = [&](double t) -> double
+    {
         const TimeStep step = point.nextStep(t);
         Vector6 strain = shearStrain(0.0);
         Vector6 stress;
@@ -200,9 +204,8 @@ TEST(Creep, ReproducesTableWithModestStep)
         point.accept(strain, step);
         return strain(3);
     };
-    auto compliance = [](double t) {
-        return 2e-6 - 4.2504e-7 * std::exp(-t / 0.142681) - 5.7496e-7 * std::exp(-t / 14.0173);
-    };
+    auto compliance = [](double t)
+    { return 2e-6 - 4.2504e-7 * std::exp(-t / 0.142681) - 5.7496e-7 * std::exp(-t / 14.0173); };
     // dt = 0.01 s: 10 steps per tau1, 1e4 steps in total
     const double dt = 0.01;
     double gamma = solveLevel(0.0);

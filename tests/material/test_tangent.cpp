@@ -69,8 +69,9 @@ TEST_P(Tangent, MatchesCentralDifferences)
         law->evaluate(e, step, point.history(), minus, unused);
         fd.col(b) = (plus - minus) / (2 * h);
     }
-    EXPECT_LT((fd - tangent).norm(), 1e-6 * tangent.norm())
-        << "tangent\n" << tangent << "\nfd\n" << fd;
+    EXPECT_LT((fd - tangent).norm(), 1e-6 * tangent.norm()) << "tangent\n"
+                                                            << tangent << "\nfd\n"
+                                                            << fd;
     EXPECT_LT((tangent - tangent.transpose()).norm(), 1e-12 * tangent.norm());
     // positive definite (the neo-Hookean dS/dE is not for ln J > mu/lambda, as here)
     if (type != "neo-hookean")
@@ -86,7 +87,8 @@ INSTANTIATE_TEST_SUITE_P(
                       std::make_tuple("neo-hookean", Kinematics::TotalLagrangian),
                       std::make_tuple("viscoelastic", Kinematics::SmallStrain),
                       std::make_tuple("viscoelastic", Kinematics::TotalLagrangian)),
-    [](const auto& info) {
+    [](const auto& info)
+    {
         std::string name = std::get<0>(info.param) +
                            (std::get<1>(info.param) == Kinematics::SmallStrain ? "_small" : "_TL");
         for (char& c : name)
@@ -115,15 +117,16 @@ TEST(NeoHookean, ReducesToHookeAndMatchesKnownStress)
     const double k = p.bulkModulusValue(), g = p.longTermShearModulus();
     EXPECT_LT((law->initialTangent() - isotropicTangent(k, g)).norm(),
               1e-9 * isotropicTangent(k, g).norm());
-    // uniaxial stretch lambda in x only (E_xx = (l^2 - 1)/2): S_xx = mu (1 - 1/l^2) + lam ln l / l^2
+    // uniaxial stretch lambda in x only (E_xx = (l^2 - 1)/2): S_xx = mu (1 - 1/l^2) + lam ln l /
+    // l^2
     const double stretch = 1.1, lam = k - 2.0 * g / 3.0;
     Vector6 e = Vector6::Zero();
     e(0) = 0.5 * (stretch * stretch - 1.0);
     Vector6 s;
     Matrix6 c;
     law->evaluate(e, {0.0, 0.0}, nullptr, s, c);
-    const double expected = g * (1.0 - 1.0 / (stretch * stretch)) +
-                            lam * std::log(stretch) / (stretch * stretch);
+    const double expected =
+        g * (1.0 - 1.0 / (stretch * stretch)) + lam * std::log(stretch) / (stretch * stretch);
     EXPECT_NEAR(s(0), expected, 1e-9 * expected);
     EXPECT_NEAR(s(1), lam * std::log(stretch), 1e-9 * expected);
 }

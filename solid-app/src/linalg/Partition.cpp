@@ -39,9 +39,9 @@ std::vector<int> partitionElements(int numElements, const std::vector<int>& offs
     options[METIS_OPTION_SEED] = 1;
     idx_t objval = 0;
     std::vector<idx_t> epart(ne), npart(nn);
-    const int status = METIS_PartMeshDual(&ne, &nn, eptr.data(), eind.data(), nullptr, nullptr,
-                                          &ncommon, &nparts, nullptr, options, &objval,
-                                          epart.data(), npart.data());
+    const int status =
+        METIS_PartMeshDual(&ne, &nn, eptr.data(), eind.data(), nullptr, nullptr, &ncommon, &nparts,
+                           nullptr, options, &objval, epart.data(), npart.data());
     if (status != METIS_OK)
         throw std::runtime_error("partitionElements: METIS_PartMeshDual failed (status " +
                                  std::to_string(status) + ") for " + std::to_string(numElements) +
@@ -50,8 +50,8 @@ std::vector<int> partitionElements(int numElements, const std::vector<int>& offs
     return part;
 }
 
-std::vector<int> partitionElements(const std::vector<std::vector<int>>& elementNodes,
-                                   int numParts, int commonNodes)
+std::vector<int> partitionElements(const std::vector<std::vector<int>>& elementNodes, int numParts,
+                                   int commonNodes)
 {
     std::vector<int> offsets{0}, nodes;
     for (const auto& element : elementNodes)

@@ -17,7 +17,7 @@ std::vector<int> partitionElements(int numElements, const std::vector<int>& elem
                                    const std::vector<int>& elementNodes, int numParts,
                                    int commonNodes = 3);
 // Same, with one node list per element (numElements = elementNodes.size()).
-std::vector<int> partitionElements(const std::vector<std::vector<int>>& elementNodes,
-                                   int numParts, int commonNodes = 3);
+std::vector<int> partitionElements(const std::vector<std::vector<int>>& elementNodes, int numParts,
+                                   int commonNodes = 3);
 
 } // namespace fsi::linalg

@@ -35,8 +35,7 @@ int rankOf(MPI_Comm comm)
 
 bool isWorkspaceError(int code)
 {
-    return code == -8 || code == -9 || code == -14 || code == -15 || code == -17 ||
-           code == -20;
+    return code == -8 || code == -9 || code == -14 || code == -15 || code == -17 || code == -20;
 }
 
 std::string meaning(int code, int detail)
@@ -158,7 +157,7 @@ SparseDirectSolver::SparseDirectSolver(MPI_Comm comm, DirectSolverOptions option
     const bool metis = options.ordering == static_cast<int>(Ordering::Metis);
     handle_->icntl(7) = metis ? 1 : options.ordering; // METIS: our own, as PERM_IN
     handle_->icntl(14) = options.memoryRelaxationPercent;
-    handle_->icntl(24) = 1;  // null pivot detection: singular -> INFOG(28) > 0
+    handle_->icntl(24) = 1;      // null pivot detection: singular -> INFOG(28) > 0
     handle_->id.cntl[2] = 1e-12; // CNTL(3): |pivot row| <= 1e-12 ||A|| counts as null
 }
 
@@ -207,9 +206,9 @@ void SparseDirectSolver::setPattern(int n, std::vector<int> rows, std::vector<in
 void SparseDirectSolver::setValues(std::vector<double> values)
 {
     if (values.size() != callerCount_)
-        throw std::invalid_argument("SparseDirectSolver::setValues: " +
-                                    std::to_string(values.size()) + " values for a pattern of " +
-                                    std::to_string(callerCount_) + " entries");
+        throw std::invalid_argument(
+            "SparseDirectSolver::setValues: " + std::to_string(values.size()) +
+            " values for a pattern of " + std::to_string(callerCount_) + " entries");
     std::vector<double> kept(keptIndex_.size());
     for (std::size_t k = 0; k < keptIndex_.size(); ++k)
         kept[k] = values[keptIndex_[k]];
@@ -231,7 +230,8 @@ void SparseDirectSolver::factorize()
         throw std::logic_error("SparseDirectSolver::factorize: setValues() not called on some "
                                "rank since the last setPattern()");
     DMUMPS_STRUC_C& id = handle_->id;
-    auto check = [&](const char* phase) {
+    auto check = [&](const char* phase)
+    {
         if (id.infog[0] < 0)
             throw std::runtime_error(std::string("SparseDirectSolver ") + phase +
                                      ": MUMPS INFOG(1) = " + std::to_string(id.infog[0]) +
@@ -286,8 +286,8 @@ void SparseDirectSolver::factorize()
         ++factorizationCount_;
         negativePivots_ = options_.symmetric ? handle_->infog(12) : 0;
         // INFOG(29) < 0 means millions of entries
-        factorEntries_ = handle_->infog(29) >= 0 ? handle_->infog(29)
-                                                 : -1000000LL * handle_->infog(29);
+        factorEntries_ =
+            handle_->infog(29) >= 0 ? handle_->infog(29) : -1000000LL * handle_->infog(29);
         factorized_ = true;
         valuesChanged_ = false;
     }
@@ -313,9 +313,9 @@ void SparseDirectSolver::solve(std::vector<double>& rhsAndSolution)
     dmumps_c(&id);
     id.rhs = nullptr;
     if (id.infog[0] < 0)
-        throw std::runtime_error("SparseDirectSolver solve: MUMPS INFOG(1) = " +
-                                 std::to_string(id.infog[0]) + ": " +
-                                 meaning(id.infog[0], id.infog[1]));
+        throw std::runtime_error(
+            "SparseDirectSolver solve: MUMPS INFOG(1) = " + std::to_string(id.infog[0]) + ": " +
+            meaning(id.infog[0], id.infog[1]));
     ++solveCount_;
 }
 
@@ -323,7 +323,8 @@ void SparseDirectSolver::solveSummedRhs(std::vector<double>& rhsAndSolution)
 {
     if (static_cast<int>(rhsAndSolution.size()) != n_)
         throw std::invalid_argument("SparseDirectSolver::solveSummedRhs: rhs size differs "
-                                    "from n = " + std::to_string(n_));
+                                    "from n = " +
+                                    std::to_string(n_));
     if (rankOf(comm_) == 0)
         MPI_Reduce(MPI_IN_PLACE, rhsAndSolution.data(), n_, MPI_DOUBLE, MPI_SUM, 0, comm_);
     else

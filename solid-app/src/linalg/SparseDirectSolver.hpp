@@ -30,11 +30,13 @@ struct DirectSolverOptions
                                    // SYM=1 has no null-pivot detection: a singular matrix is
                                    // caught only if a pivot is exactly 0 or < 0.
     int ordering = static_cast<int>(Ordering::Metis); // ICNTL(7)
-    int memoryRelaxationPercent = 30;                  // ICNTL(14); raised on INFOG(1) = -9
-    int verbosity = 0;                                 // 0 silent ... 4 MUMPS diagnostics
+    int memoryRelaxationPercent = 30;                 // ICNTL(14); raised on INFOG(1) = -9
+    int verbosity = 0;                                // 0 silent ... 4 MUMPS diagnostics
 };
 
-// Collective on comm: every rank calls every method in the same order.
+// Collective on comm: every rank calls every method (and the destructor, which must run
+// before MPI_Finalize) in the same order. Argument errors (sizes, indices) are checked
+// locally and must not differ between ranks; MUMPS errors are reported on every rank.
 //
 // Matrix input is distributed assembled triplets (ICNTL(18)=3): each rank passes its
 // own (row, col, value) triplets, 0-BASED global indices in [0, n); duplicates (also
@@ -92,7 +94,7 @@ private:
     MPI_Comm comm_;
     DirectSolverOptions options_;
     int n_ = 0;
-    std::vector<int> rows_;       // kept triplets, 1-based (MUMPS)
+    std::vector<int> rows_; // kept triplets, 1-based (MUMPS)
     std::vector<int> cols_;
     std::vector<int> keptIndex_;  // position of each kept triplet in the caller's order
     std::size_t callerCount_ = 0; // caller's triplet count (before the triangle filter)

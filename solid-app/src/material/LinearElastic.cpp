@@ -9,8 +9,8 @@ LinearElastic::LinearElastic(double bulkModulus, double shearModulus)
 {
 }
 
-void LinearElastic::evaluate(const Vector6& strain, const TimeStep&, const double*,
-                             Vector6& stress, Matrix6& tangent) const
+void LinearElastic::evaluate(const Vector6& strain, const TimeStep&, const double*, Vector6& stress,
+                             Matrix6& tangent) const
 {
     tangent = stiffness_;
     stress.noalias() = stiffness_ * strain;

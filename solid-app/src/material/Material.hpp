@@ -89,7 +89,10 @@ Matrix6 isotropicTangent(double bulkModulus, double shearModulus);
 // strain times 2:  2G * deviatoricProjector() * strain = 2G dev(eps) as stress vector.
 Matrix6 deviatoricProjector();
 // Trace of a Voigt tensor (strain or stress): v0 + v1 + v2.
-inline double trace(const Vector6& v) { return v(0) + v(1) + v(2); }
+inline double trace(const Vector6& v)
+{
+    return v(0) + v(1) + v(2);
+}
 // Von Mises equivalent of a stress vector (tensor shear components) [Pa].
 double vonMises(const Vector6& stress);
 

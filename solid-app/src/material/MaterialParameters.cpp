@@ -20,20 +20,26 @@ std::string number(double v)
     return buffer;
 }
 
-double youngs(double k, double g) { return 9.0 * k * g / (3.0 * k + g); }
-double poisson(double k, double g) { return (3.0 * k - 2.0 * g) / (2.0 * (3.0 * k + g)); }
+double youngs(double k, double g)
+{
+    return 9.0 * k * g / (3.0 * k + g);
+}
+double poisson(double k, double g)
+{
+    return (3.0 * k - 2.0 * g) / (2.0 * (3.0 * k + g));
+}
 } // namespace
 
 void MaterialParameters::validate() const
 {
     const std::string at = file + ": " + keyPrefix + ".";
-    auto fail = [&](const std::string& key, const std::string& what) {
-        throw std::runtime_error(at + key + " " + what);
-    };
+    auto fail = [&](const std::string& key, const std::string& what)
+    { throw std::runtime_error(at + key + " " + what); };
     if (type.empty())
         fail("type", "is missing; set linear-elastic, neo-hookean or viscoelastic");
     if (type != "linear-elastic" && type != "neo-hookean" && type != "viscoelastic")
-        fail("type", "= '" + type + "' is unknown; use linear-elastic, neo-hookean or viscoelastic");
+        fail("type",
+             "= '" + type + "' is unknown; use linear-elastic, neo-hookean or viscoelastic");
 
     const bool haveE = youngsModulus.has_value(), haveNu = poissonRatio.has_value();
     const bool haveK = bulkModulus.has_value(), haveG = shearModulus.has_value();
@@ -41,7 +47,8 @@ void MaterialParameters::validate() const
         fail(haveE ? "E" : "nu", "is given together with K/G; give either (E, nu) or (K, G)");
     if (!haveE && !haveNu && !haveK && !haveG)
         fail("E", "is missing; give either (E, nu) or (K, G) in Pa");
-    auto positive = [&](const std::string& key, double v) {
+    auto positive = [&](const std::string& key, double v)
+    {
         if (!std::isfinite(v) || v <= 0.0)
             fail(key, "= " + number(v) + " must be a positive modulus in Pa");
     };
@@ -73,11 +80,10 @@ void MaterialParameters::validate() const
     if (type != "viscoelastic")
     {
         if (!pronyConvention.empty() || !pronyCoefficients.empty() || !pronyTimes.empty())
-            fail("prony", "is given for type " + type +
-                              "; remove it or set type: viscoelastic");
+            fail("prony", "is given for type " + type + "; remove it or set type: viscoelastic");
         if (!modulusBasis.empty())
-            fail("modulus_basis", "is given for type " + type +
-                                      "; remove it (elastic laws have one modulus)");
+            fail("modulus_basis",
+                 "is given for type " + type + "; remove it (elastic laws have one modulus)");
         return;
     }
 
@@ -85,7 +91,8 @@ void MaterialParameters::validate() const
         fail("modulus_basis", "is missing; say whether E/G is the long-term or the "
                               "instantaneous modulus: long-term | instantaneous");
     if (modulusBasis != "long-term" && modulusBasis != "instantaneous")
-        fail("modulus_basis", "= '" + modulusBasis + "' is unknown; use long-term or instantaneous");
+        fail("modulus_basis",
+             "= '" + modulusBasis + "' is unknown; use long-term or instantaneous");
     if (pronyConvention.empty())
         fail("prony.convention", "is missing; set long-term-gamma (paper: gamma relative to the "
                                  "long-term modulus) or abaqus-g (g relative to the instantaneous "
@@ -96,17 +103,19 @@ void MaterialParameters::validate() const
     if (pronyCoefficients.empty())
         fail("prony.coefficients", "is empty; give at least one term or use type linear-elastic");
     if (pronyTimes.size() != pronyCoefficients.size())
-        fail("prony.times", "has " + std::to_string(pronyTimes.size()) + " entries but "
+        fail("prony.times", "has " + std::to_string(pronyTimes.size()) +
+                                " entries but "
                                 "prony.coefficients has " +
-                                std::to_string(pronyCoefficients.size()) + "; give one tau per term");
+                                std::to_string(pronyCoefficients.size()) +
+                                "; give one tau per term");
     for (std::size_t i = 0; i < pronyTimes.size(); ++i)
     {
         if (!std::isfinite(pronyTimes[i]) || pronyTimes[i] <= 0.0)
             fail("prony.times", "[" + std::to_string(i) + "] = " + number(pronyTimes[i]) +
                                     " must be a relaxation time > 0 in s");
         if (!std::isfinite(pronyCoefficients[i]) || pronyCoefficients[i] < 0.0)
-            fail("prony.coefficients", "[" + std::to_string(i) + "] = " +
-                                           number(pronyCoefficients[i]) + " must be >= 0");
+            fail("prony.coefficients",
+                 "[" + std::to_string(i) + "] = " + number(pronyCoefficients[i]) + " must be >= 0");
     }
     if (pronyConvention == "abaqus-g")
     {
@@ -135,8 +144,7 @@ double gammaSum(const MaterialParameters& p)
 
 double inputShear(const MaterialParameters& p)
 {
-    return p.shearModulus ? *p.shearModulus
-                          : *p.youngsModulus / (2.0 * (1.0 + *p.poissonRatio));
+    return p.shearModulus ? *p.shearModulus : *p.youngsModulus / (2.0 * (1.0 + *p.poissonRatio));
 }
 } // namespace
 
@@ -184,8 +192,8 @@ std::string MaterialParameters::describe() const
     out << "material " << type;
     if (type != "viscoelastic")
     {
-        out << ": E = " << number(longTermYoungsModulus()) << " Pa, G = "
-            << number(longTermShearModulus()) << " Pa, K = " << number(k)
+        out << ": E = " << number(longTermYoungsModulus())
+            << " Pa, G = " << number(longTermShearModulus()) << " Pa, K = " << number(k)
             << " Pa, nu = " << number(longTermPoissonRatio()) << "\n";
         return out.str();
     }
@@ -195,8 +203,7 @@ std::string MaterialParameters::describe() const
         << "; deviatoric Prony series, volumetric elastic)\n";
     for (std::size_t i = 0; i < gamma.size(); ++i)
         out << "  term " << i + 1 << ": gamma (long-term) = " << number(gamma[i])
-            << ", g (abaqus) = " << number(g[i]) << ", tau = " << number(pronyTimes[i])
-            << " s\n";
+            << ", g (abaqus) = " << number(g[i]) << ", tau = " << number(pronyTimes[i]) << " s\n";
     const double sum = gammaSum(*this);
     out << "  sum gamma = " << number(sum) << "\n";
     out << "  long-term:     E = " << number(longTermYoungsModulus())

@@ -28,10 +28,10 @@ struct MaterialParameters
     std::optional<double> bulkModulus;   // K  [Pa]
     std::optional<double> shearModulus;  // G  [Pa]
 
-    std::string modulusBasis;            // "long-term" | "instantaneous"
-    std::string pronyConvention;         // "long-term-gamma" | "abaqus-g"
+    std::string modulusBasis;    // "long-term" | "instantaneous"
+    std::string pronyConvention; // "long-term-gamma" | "abaqus-g"
     std::vector<double> pronyCoefficients;
-    std::vector<double> pronyTimes;      // [s]
+    std::vector<double> pronyTimes; // [s]
 
     // Used only to build error messages: "<file>: <keyPrefix>.<key> ...".
     std::string file = "config";

@@ -51,8 +51,8 @@ void Viscoelastic::evaluate(const Vector6& strain, const TimeStep& step, const d
     tangent = isotropicTangent(bulkModulus_, longTermShearModulus_ * shearFactor);
 }
 
-void Viscoelastic::updateHistory(const Vector6& strain, const TimeStep& step,
-                                 const double* history, double* newHistory) const
+void Viscoelastic::updateHistory(const Vector6& strain, const TimeStep& step, const double* history,
+                                 double* newHistory) const
 {
     checkStep(step);
     const std::size_t n = gamma_.size();

@@ -36,8 +36,8 @@ public:
     std::size_t historySize() const override { return 6 * (gamma_.size() + 1); }
     void evaluate(const Vector6& strain, const TimeStep& step, const double* committedHistory,
                   Vector6& stress, Matrix6& tangent) const override;
-    void updateHistory(const Vector6& strain, const TimeStep& step,
-                       const double* committedHistory, double* newHistory) const override;
+    void updateHistory(const Vector6& strain, const TimeStep& step, const double* committedHistory,
+                       double* newHistory) const override;
 
     std::size_t termCount() const { return gamma_.size(); }
 
