@@ -123,9 +123,11 @@ void sendRaw(MPI_Comm inter, const Message& message, std::int32_t version, doubl
     }
 }
 
-// Receives one message from the peer root; the version is checked after the payload arrived,
-// so the message stream stays in step even on a mismatch.
-Message receiveRaw(MPI_Comm inter, std::int32_t version, double timeout, const std::string& waitWhat)
+// Receives one message from the peer root. The peer's protocol version is returned in
+// peerVersion when given (the caller checks it); otherwise it is checked here, after the payload
+// arrived, so the message stream stays in step even on a mismatch.
+Message receiveRaw(MPI_Comm inter, std::int32_t version, double timeout, const std::string& waitWhat,
+                   std::int32_t* peerVersion = nullptr)
 {
     EncodedHeader words{};
     MPI_Request request = MPI_REQUEST_NULL;
@@ -166,7 +168,10 @@ Message receiveRaw(MPI_Comm inter, std::int32_t version, double timeout, const s
         }
     }
     decodePayload(header, payload, message);
-    decodeHeader(words, version); // throws ProtocolError on a version mismatch
+    if (peerVersion)
+        *peerVersion = header.version;
+    else
+        decodeHeader(words, version); // throws ProtocolError on a version mismatch
     return message;
 }
 
@@ -460,9 +465,11 @@ void Channel::handshake(const PeerExpectation& expectation)
             sendRaw(interComm_, hello, self_.protocolVersion, timeout, peerName());
             try
             {
+                std::int32_t peerVersion = 0;
                 const Message reply = receiveRaw(interComm_, self_.protocolVersion, timeout,
                                                  "waiting for the handshake (Hello) from " +
-                                                     peerName());
+                                                     peerName(),
+                                                 &peerVersion);
                 if (reply.kind != MessageKind::Hello || reply.integers.size() < 2)
                     throw ProtocolError("fsi::comm: expected Hello from the peer, got " +
                                         toString(reply.kind));
@@ -472,7 +479,12 @@ void Channel::handshake(const PeerExpectation& expectation)
                 peer_.program = reply.text;
                 peerKnown_ = true;
                 const std::string who = peerName();
-                if (peer_.role != Role::Fluid && peer_.role != Role::Solid)
+                if (peerVersion != self_.protocolVersion)
+                    ourReason = "protocol version mismatch: " + who + " speaks version " +
+                                std::to_string(peerVersion) + ", " + self_.program +
+                                " version " + std::to_string(self_.protocolVersion) +
+                                "; build both programs from the same source";
+                else if (peer_.role != Role::Fluid && peer_.role != Role::Solid)
                     ourReason = "the peer announced an unknown role";
                 else if (peer_.role == self_.role)
                     ourReason = "both programs are " + toString(self_.role) +
