@@ -280,7 +280,8 @@ def writeGeo(path, upper, lower, args):
     """Gmsh .geo of the foil in the tunnel frame, root face at Z = z_root, extruded to the tip.
 
     Numbers settable with `gmsh -setnumber NAME VALUE`: hex (0 Tet, 1 structured Hex),
-    lc (tet size, m), nChord / nThick / nNose / nSpan (hex divisions). Physical groups:
+    lc (tet size, m), edgeRatio (size at LE/TE points / lc),
+    hoOpt (Mesh.HighOrderOptimize), curved (0: straight-sided second order), nChord / nThick / nNose / nSpan (hex divisions). Physical groups:
     "volume" (3-D), "clamped" (root face), "wetted" (all other faces).
     """
     n = len(upper)
@@ -295,7 +296,10 @@ def writeGeo(path, upper, lower, args):
     L.append('SetFactory("Built-in");')
     L.append("DefineConstant[ hex = {0, Name \"hex\"}, lc = {%g, Name \"lc\"}," % (args.chord / 12))
     L.append("  nChord = {40, Name \"nChord\"}, nThick = {6, Name \"nThick\"},")
-    L.append("  nNose = {12, Name \"nNose\"}, nSpan = {20, Name \"nSpan\"} ];")
+    L.append("  nNose = {12, Name \"nNose\"}, nSpan = {20, Name \"nSpan\"},")
+    L.append("  edgeRatio = {0.25, Name \"edgeRatio\"}, hoOpt = {2, Name \"hoOpt\"},")
+    L.append("  curved = {1, Name \"curved\"} ];")
+    L.append("lcEdge = edgeRatio * lc; // size at the leading and trailing edge points")
     L.append("span = %.12g;" % args.span)
     # points: upper 0..n-1 ids 1..n ; lower 1..n-1 ids n+1..2n-1 (LE shared)
     def pid(surf, i):
@@ -304,10 +308,12 @@ def writeGeo(path, upper, lower, args):
         return 1 + i if surf == "u" else n + i
     for i in range(n):
         X, Y = xLe + upper[i, 0], y0 - upper[i, 1]
-        L.append("Point(%d) = {%.12e, %.12e, %.12e, lc};" % (pid("u", i), X, Y, zr))
+        size = "lcEdge" if i in (0, n - 1) else "lc"
+        L.append("Point(%d) = {%.12e, %.12e, %.12e, %s};" % (pid("u", i), X, Y, zr, size))
     for i in range(1, n):
         X, Y = xLe + lower[i, 0], y0 - lower[i, 1]
-        L.append("Point(%d) = {%.12e, %.12e, %.12e, lc};" % (pid("l", i), X, Y, zr))
+        size = "lcEdge" if i == n - 1 else "lc"
+        L.append("Point(%d) = {%.12e, %.12e, %.12e, %s};" % (pid("l", i), X, Y, zr, size))
 
     def seq(surf, a, b):
         return ", ".join(str(pid(surf, i)) for i in range(a, b + 1))
@@ -338,8 +344,8 @@ def writeGeo(path, upper, lower, args):
     L.append('Physical Surface("clamped") = {1};')
     L.append('Physical Surface("wetted") = {ex[0], ex[{2 : #ex[]-1}]};')
     L.append("Mesh.ElementOrder = 2;")
-    L.append("Mesh.HighOrderOptimize = 0;")
-    L.append("Mesh.SecondOrderLinear = 0;")
+    L.append("Mesh.HighOrderOptimize = hoOpt; // 2: optimise curved Tet10 (no negative Jacobians)")
+    L.append("Mesh.SecondOrderLinear = 1 - curved; // curved 0: straight-sided second-order")
     with open(path, "w") as f:
         f.write("\n".join(L) + "\n")
 

@@ -1,0 +1,141 @@
+#!/bin/bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# Geometry and meshes of the hydrofoil case (paper section 2) into a run folder outside git.
+#
+#   cases/hydrofoil/mesh.sh --out DIR [--preset coarse|medium|fine] [--tc 0.12] [--cli 0.5]
+#                           [--meanline a08|a08mod] [--layers N] [--np N]
+#                           [--fluid-only | --solid-only]
+#
+# Writes
+#   DIR/geometry/   section.csv, foil.stl (closed), foil.geo (Gmsh), snappy.stl (root extended)
+#   DIR/fluid/      OpenFOAM v1912 case: blockMesh + snappyHexMesh mesh, 0/ U p pointDisplacement,
+#                   checkMesh log (must say "Mesh OK"; the script fails otherwise)
+#   DIR/solid/      foil-tet10.msh (v4), foil-tet10-msh22.msh (v2), foil-hex20.msh, foil-hex27.msh
+#   DIR/mesh-summary.txt  cell / node / element counts
+# Needs Debian's openfoam (blockMesh, surfaceFeatureExtract, snappyHexMesh, checkMesh), gmsh and
+# /usr/bin/python3 with numpy.
+set -euo pipefail
+
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+preset=coarse tc=0.12 cli=0.5 meanline=a08 out="" layers="" np=1 doFluid=1 doSolid=1
+
+usage() { sed -n '3,8p' "$0" | sed 's/^# \{0,1\}//'; }
+die() { echo "error: mesh.sh: $*" >&2; exit 1; }
+
+while [ $# -gt 0 ]; do
+    case "$1" in
+        --preset) preset="$2"; shift 2 ;;
+        --tc) tc="$2"; shift 2 ;;
+        --cli) cli="$2"; shift 2 ;;
+        --meanline) meanline="$2"; shift 2 ;;
+        --out) out="$2"; shift 2 ;;
+        --layers) layers="$2"; shift 2 ;;
+        --np) np="$2"; shift 2 ;;
+        --fluid-only) doSolid=0; shift ;;
+        --solid-only) doFluid=0; shift ;;
+        -h|--help) usage; exit 0 ;;
+        *) die "unknown option '$1' (see --help)" ;;
+    esac
+done
+[ -n "$out" ] || die "--out DIR is required (a run folder outside git, e.g. /tmp/hydrofoil-coarse)"
+[ -f "$here/fluid/system/presets/$preset" ] || die "--preset '$preset' unknown; use coarse, medium or fine"
+mkdir -p "$out"
+out="$(cd "$out" && pwd)"
+case "$out/" in
+    "$here"/*) die "--out '$out' is inside cases/hydrofoil; generate into a run folder outside git" ;;
+esac
+
+# Solid mesh presets: Tet10 size lc (m); Hex divisions chord x thickness x span (+ nose)
+case "$preset" in
+    coarse) lc=0.010; hexC=24; hexT=4; hexS=12; hexN=8 ;;
+    medium) lc=0.006; hexC=40; hexT=6; hexS=20; hexN=12 ;;
+    fine)   lc=0.004; hexC=64; hexT=8; hexS=32; hexN=16 ;;
+esac
+
+log() { echo "[mesh.sh $(date +%H:%M:%S)] $*"; }
+summary="$out/mesh-summary.txt"
+echo "hydrofoil meshes: preset=$preset tc=$tc cli=$cli meanline=$meanline" > "$summary"
+
+# ---- geometry ------------------------------------------------------------------------------
+log "geometry (t/c=$tc, C_Li=$cli, $meanline)"
+mkdir -p "$out/geometry"
+/usr/bin/python3 "$here/geometry/naca66a08.py" --tc "$tc" --cli "$cli" --meanline "$meanline" \
+    --out "$out/geometry" | tee -a "$summary"
+# the snappyHexMesh surface reaches 2 mm through the root wall z = 0 for a clean intersection
+tmpgeo="$(mktemp -d)"
+/usr/bin/python3 "$here/geometry/naca66a08.py" --tc "$tc" --cli "$cli" --meanline "$meanline" \
+    --stl-root-extension 0.002 --out "$tmpgeo" > /dev/null
+mv "$tmpgeo/foil.stl" "$out/geometry/snappy.stl"
+rm -rf "$tmpgeo"
+
+# ---- fluid ---------------------------------------------------------------------------------
+if [ "$doFluid" = 1 ]; then
+    export WM_PROJECT_DIR="${WM_PROJECT_DIR:-/usr/share/openfoam}"
+    case="$out/fluid"
+    log "fluid case -> $case (preset $preset)"
+    rm -rf "$case"
+    mkdir -p "$case/constant/triSurface"
+    cp -r "$here/fluid/system" "$here/fluid/constant" "$case/"
+    cp "$here/fluid/system/presets/$preset" "$case/system/meshParameters"
+    if [ -n "$layers" ]; then
+        if [ "$layers" -gt 0 ]; then
+            foamDictionary -case "$case" system/meshParameters -entry addLayers -set true > /dev/null
+            foamDictionary -case "$case" system/meshParameters -entry nLayers -set "$layers" > /dev/null
+        else
+            foamDictionary -case "$case" system/meshParameters -entry addLayers -set false > /dev/null
+        fi
+    fi
+    cp "$out/geometry/snappy.stl" "$case/constant/triSurface/foil.stl"
+    ( cd "$case"
+      blockMesh > log.blockMesh 2>&1 || { tail -20 log.blockMesh; exit 1; }
+      surfaceFeatureExtract > log.surfaceFeatureExtract 2>&1 || { tail -20 log.surfaceFeatureExtract; exit 1; }
+      if [ "$np" -gt 1 ]; then
+          foamDictionary system/decomposeParDict -entry numberOfSubdomains -set "$np" > /dev/null
+          foamDictionary system/decomposeParDict -entry coeffs/n -set "($np 1 1)" > /dev/null
+          decomposePar -force > log.decomposePar.mesh 2>&1
+          OMPI_MCA_btl_tcp_if_include=lo OMPI_MCA_oob_tcp_if_include=lo \
+          mpirun --allow-run-as-root --oversubscribe -np "$np" snappyHexMesh -overwrite -parallel \
+              > log.snappyHexMesh 2>&1 || { tail -30 log.snappyHexMesh; exit 1; }
+          reconstructParMesh -constant > log.reconstructParMesh 2>&1
+          rm -rf processor*
+      else
+          snappyHexMesh -overwrite > log.snappyHexMesh 2>&1 || { tail -30 log.snappyHexMesh; exit 1; }
+      fi
+      rm -f constant/polyMesh/{cellLevel,pointLevel,level0Edge,surfaceIndex,refinementHistory}
+      rm -rf 0
+      cp -r "$here/fluid/0.orig" 0
+      checkMesh > log.checkMesh 2>&1 || true
+    )
+    grep -q "^Mesh OK" "$case/log.checkMesh" || { grep -E "\*\*\*|Failed" "$case/log.checkMesh"; die "checkMesh failed on $case (see log.checkMesh)"; }
+    grep -q "^    foil$\|^        foil$\|foil" "$case/constant/polyMesh/boundary" || die "no foil patch in the fluid mesh"
+    cells=$(awk '/^ *cells:/{print $2; exit}' "$case/log.checkMesh")
+    points=$(awk '/^ *points:/{print $2; exit}' "$case/log.checkMesh")
+    foilFaces=$(awk '/^ *foil /{print $2; exit}' "$case/log.checkMesh")
+    nonOrtho=$(awk '/Mesh non-orthogonality Max:/{print $4; exit}' "$case/log.checkMesh")
+    skew=$(awk '/Max skewness =/{print $4; exit}' "$case/log.checkMesh")
+    echo "fluid: cells $cells points $points foil-faces $foilFaces max-non-orthogonality $nonOrtho max-skewness $skew (checkMesh: Mesh OK)" | tee -a "$summary"
+fi
+
+# ---- solid ---------------------------------------------------------------------------------
+if [ "$doSolid" = 1 ]; then
+    solid="$out/solid"
+    mkdir -p "$solid"
+    geo="$out/geometry/foil.geo"
+    log "solid Tet10 (lc=$lc m) -> $solid"
+    gmsh "$geo" -3 -order 2 -setnumber lc "$lc" -format msh4 -o "$solid/foil-tet10.msh" \
+        > "$solid/log.tet10" 2>&1 || { tail -20 "$solid/log.tet10"; die "gmsh Tet10 failed"; }
+    gmsh "$geo" -3 -order 2 -setnumber lc "$lc" -format msh22 -o "$solid/foil-tet10-msh22.msh" \
+        > "$solid/log.tet10-msh22" 2>&1 || die "gmsh Tet10 (msh22) failed"
+    log "solid Hex20 / Hex27 (chord $hexC, thickness $hexT, span $hexS, nose $hexN)"
+    hexArgs=(-setnumber hex 1 -setnumber nChord "$hexC" -setnumber nThick "$hexT"
+             -setnumber nSpan "$hexS" -setnumber nNose "$hexN")
+    gmsh "$geo" -3 -order 2 "${hexArgs[@]}" -string "Mesh.SecondOrderIncomplete = 1;" \
+        -format msh4 -o "$solid/foil-hex20.msh" > "$solid/log.hex20" 2>&1 || die "gmsh Hex20 failed"
+    gmsh "$geo" -3 -order 2 "${hexArgs[@]}" -format msh4 -o "$solid/foil-hex27.msh" \
+        > "$solid/log.hex27" 2>&1 || die "gmsh Hex27 failed"
+    for f in "$solid"/log.*; do
+        if grep -q "elements with jac. < 0" "$f"; then die "negative Jacobians in $(basename "$f")"; fi
+    done
+    /usr/bin/python3 "$here/tools/mshinfo.py" "$solid"/foil-*.msh | tee -a "$summary"
+fi
+log "done: $summary"
