@@ -67,7 +67,7 @@ void IqnIlsParameters::validate() const
                                  std::to_string(reuseLevels) + "); 0 switches reuse off");
     if (!(filterTolerance >= 0.0 && filterTolerance < 1.0))
         throw std::runtime_error("acceleration.filter_tolerance must be in [0, 1) (got " +
-                                 str(filterTolerance) + "); e.g. 1e-8");
+                                 str(filterTolerance) + "); e.g. 1e-3");
     if (filter != "qr-column" && filter != "qr-matrix")
         throw std::runtime_error("acceleration.filter '" + filter +
                                  "' is unknown; use qr-column or qr-matrix");

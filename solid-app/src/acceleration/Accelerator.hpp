@@ -86,7 +86,7 @@ struct IqnIlsParameters
     double initialRelaxation = std::numeric_limits<double>::quiet_NaN(); // omega_0, required
     int maxColumns = 100;        // cap on columns (current + reused), oldest dropped first
     int reuseLevels = 0;         // converged levels whose columns are reused (0 = none)
-    double filterTolerance = 1e-8; // QR filter epsilon, see QrFilter.hpp
+    double filterTolerance = 1e-3; // QR filter epsilon, see QrFilter.hpp
     std::string filter = "qr-column"; // "qr-column" (|R_ii| < eps |v_i|) | "qr-matrix" (eps ||R||)
     void validate() const;
 };
