@@ -17,6 +17,7 @@ Description
 
 Usage
     fluid-app [-rigid | -prescribed] [-parallel] [-case DIR]
+              [--launch port|mpmd] [--port-file FILE] [--comm-timeout SECONDS]
 \*---------------------------------------------------------------------------*/
 
 #include "fvCFD.H"
@@ -27,6 +28,10 @@ Usage
 
 int main(int argc, char* argv[])
 {
+    // Before argList: strips the comm flags, starts MPI and the MPMD world
+    // redirect (coupled mode) so that Pstream sees only the fluid's ranks.
+    fsi::fluid::initialiseComm(argc, argv);
+
     argList::addNote
     (
         "Steady incompressible SIMPLE solver with mesh motion, coupled to solid-app."
@@ -126,9 +131,13 @@ int main(int argc, char* argv[])
     }
     else if (mode == "coupled")
     {
-        FatalErrorInFunction
-            << "coupled mode needs the fsi::comm transport (not built in yet); "
-            << "use -rigid or -prescribed" << exit(FatalError);
+        if (!fsi::fluid::commAvailable())
+        {
+            FatalErrorInFunction
+                << "coupled mode needs fsi::comm; this fluid-app was built without comm/"
+                << exit(FatalError);
+        }
+        rc = coupling.runCoupled(steadySolve, fsi::fluid::makeCommTransport());
     }
     else
     {

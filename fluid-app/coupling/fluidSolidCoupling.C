@@ -69,7 +69,8 @@ Foam::fluidSolidCoupling::fluidSolidCoupling
     maxNonOrth_(90),
     maxSkewness_(20),
     nGlobalPoints_(0),
-    nGlobalFaces_(0)
+    nGlobalFaces_(0),
+    writeInterfaceData_(false)
 {
     if (patchi_ < 0)
     {
@@ -104,6 +105,7 @@ Foam::fluidSolidCoupling::fluidSolidCoupling
     const dictionary& quality = dict_.subOrEmptyDict("meshQuality");
     maxNonOrth_ = quality.getOrDefault<scalar>("maxNonOrthogonality", 85);
     maxSkewness_ = quality.getOrDefault<scalar>("maxSkewness", 10);
+    writeInterfaceData_ = dict_.getOrDefault<bool>("writeInterfaceData", false);
 
     buildGlobalOrdering();
 
@@ -355,17 +357,40 @@ bool Foam::fluidSolidCoupling::meshQualityOk() const
 
 void Foam::fluidSolidCoupling::failWith(const string& message)
 {
-    if (Pstream::master() && transport_)
+    if (transport_)
     {
-        try
-        {
-            transport_->sendAbort(message);
-        }
-        catch (const std::exception&)
-        {
-        }
+        Perr<< "error: " << message.c_str() << endl;
+        transport_->abortRun(message);   // comm: tells the peer and exits
     }
     FatalErrorInFunction << message << exit(FatalError);
+}
+
+
+void Foam::fluidSolidCoupling::writeInterfaceCsv
+(
+    const fileName& name,
+    const std::vector<double>& values,
+    const label n,
+    const std::string& header
+) const
+{
+    if (!Pstream::master() || !writeInterfaceData_)
+    {
+        return;
+    }
+    OFstream os(mesh_.time().globalPath()/"postProcessing"/"fsi"/name);
+    os.precision(17);
+    os  << header.c_str() << nl;
+    const label width = n ? label(values.size())/n : 0;
+    for (label i = 0; i < n; ++i)
+    {
+        os  << i;
+        for (label c = 0; c < width; ++c)
+        {
+            os  << ',' << values[width*i + c];
+        }
+        os  << nl;
+    }
 }
 
 
@@ -563,6 +588,14 @@ int Foam::fluidSolidCoupling::runRigid(const SteadySolver& solve)
         << (r.converged ? " (converged)" : " (iteration cap reached)") << endl;
     reportForces("rigid");
     checkAgainstForcesFunctionObject();
+    {
+        const std::vector<double> f = gatherFaceForces(faceForces(patchi_));
+        if (Pstream::master() && writeInterfaceData_)
+        {
+            mkDir(mesh_.time().globalPath()/"postProcessing"/"fsi");
+        }
+        writeInterfaceCsv("interfaceForces_rigid.csv", f, nGlobalFaces_, "i,fx,fy,fz");
+    }
     mesh_.time().printExecutionTime(Info);
     Time& runTime = const_cast<Time&>(mesh_.time());
     runTime.writeNow();
@@ -577,10 +610,9 @@ int Foam::fluidSolidCoupling::runCoupled
 )
 {
     using namespace fsi::fluid;
+    transport_ = std::move(transport);
     if (Pstream::master())
     {
-        transport_ = std::move(transport);
-        Info<< "fsi: coupled mode, transport: " << transport_->describe() << endl;
         mkDir(mesh_.time().globalPath()/"postProcessing"/"fsi");
         logFile_.reset
         (
@@ -592,22 +624,27 @@ int Foam::fluidSolidCoupling::runCoupled
     }
 
     const InterfaceGeometry geometry = gatherGeometry();
-    if (Pstream::master())
+    transport_->handshake(geometry, nGlobalPoints_, nGlobalFaces_);
+    Info<< "fsi: coupled mode, transport: " << transport_->describe().c_str() << nl << endl;
     {
-        transport_->handshake(geometry);
+        std::vector<double> faceData(6*nGlobalFaces_);
+        for (label i = 0; i < nGlobalFaces_ && Pstream::master(); ++i)
+        {
+            for (label c = 0; c < 3; ++c)
+            {
+                faceData[6*i + c] = geometry.faceCentres[3*i + c];
+                faceData[6*i + 3 + c] = geometry.faceAreaVectors[3*i + c];
+            }
+        }
+        writeInterfaceCsv("interfacePoints.csv", geometry.pointCoordinates, nGlobalPoints_, "i,x,y,z");
+        writeInterfaceCsv("interfaceFaces.csv", faceData, nGlobalFaces_, "i,cx,cy,cz,Sx,Sy,Sz");
     }
-    Info<< "fsi: handshake done" << nl << endl;
 
     const SolveControls ctrl = controls("coupled");
     const clockTime wall;
     while (true)
     {
-        Command c;
-        if (Pstream::master())
-        {
-            c = transport_->receive();
-        }
-        c = broadcastCommand(c);
+        Command c = broadcastCommand(transport_->receive());
 
         switch (c.kind)
         {
@@ -629,6 +666,11 @@ int Foam::fluidSolidCoupling::runCoupled
                     << (r.converged ? "" : " (cap reached)")
                     << ", residuals U " << r.residualU << " p " << r.residualP
                     << ", interface force " << total << " N" << endl;
+                writeInterfaceCsv
+                (
+                    "interfaceForces_" + Foam::name(c.step) + "_" + Foam::name(c.iteration) + ".csv",
+                    report.faceForces, nGlobalFaces_, "i,fx,fy,fz"
+                );
                 if (Pstream::master())
                 {
                     logFile_()
@@ -636,8 +678,8 @@ int Foam::fluidSolidCoupling::runCoupled
                         << int(r.converged) << ',' << r.residualU << ',' << r.residualP << ','
                         << total.x() << ',' << total.y() << ',' << total.z() << ','
                         << maxDisp << ',' << wall.elapsedTime() << endl;
-                    transport_->sendForces(c, report);
                 }
+                transport_->sendForces(c, report);
                 break;
             }
             case CommandKind::accept:

@@ -77,7 +77,7 @@ class PrescribedTransport : public CouplingTransport
 public:
     explicit PrescribedTransport(const PrescribedMotion& motion) : motion_(motion) {}
 
-    void handshake(const InterfaceGeometry& geometry) override
+    void handshake(const InterfaceGeometry& geometry, long, long) override
     {
         points_ = geometry.pointCoordinates;
     }
@@ -110,7 +110,7 @@ public:
     }
 
     void sendForces(const Command&, const ForceReport&) override {}
-    void sendAbort(const std::string&) override {}
+    void abortRun(const std::string&) override {}
 
     std::string describe() const override
     {

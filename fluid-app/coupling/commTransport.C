@@ -1,0 +1,194 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// fluid-app: the coupled transport over fsi::comm (compiled as C++17, no
+// OpenFOAM headers). Protocol of the fluid side (DESIGN.md section 4):
+//   Channel::open (Hello: role fluid, program "fluid-app", interface sizes
+//     {nPoints, nFaces}) -> InterfaceGeometry: values = point coordinates
+//     (3 nPoints), face centres (3 nFaces), face area vectors (3 nFaces);
+//   loop: Solve (values = 3 nPoints displacements [m]) -> Forces (values =
+//     3 nFaces forces [N], integers = {SIMPLE iterations}, scalars =
+//     {residual U, residual p}, same step/iteration as the Solve);
+//     Accept (scalars[0] = time [s] if given, else the step index names the
+//     output folder); Finish -> close, exit 0; Abort -> exit 5 with the reason.
+#include "couplingTransport.H"
+
+#ifdef FSI_FLUID_WITH_COMM
+
+#include "fsi/comm/Channel.hpp"
+#include "fsi/comm/Errors.hpp"
+#include "fsi/comm/LaunchOptions.hpp"
+#include "fsi/comm/MpmdWorld.hpp"
+
+#include <cstring>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+
+namespace fsi::fluid
+{
+namespace
+{
+
+std::optional<comm::LaunchOptions> launchOptions;
+
+class CommTransport : public CouplingTransport
+{
+public:
+    explicit CommTransport(const comm::LaunchOptions& options) : options_(options) {}
+
+    void handshake(const InterfaceGeometry& geometry, long nPoints, long nFaces) override
+    {
+        guard([&] {
+            comm::Identity self;
+            self.role = comm::Role::Fluid;
+            self.program = "fluid-app";
+            self.interfaceSizes = {nPoints, nFaces};
+            channel_.emplace(comm::Channel::open(options_, self));
+            comm::Message m;
+            m.kind = comm::MessageKind::InterfaceGeometry;
+            if (channel_->isRoot())
+            {
+                m.values = geometry.pointCoordinates;
+                m.values.insert(m.values.end(), geometry.faceCentres.begin(),
+                                geometry.faceCentres.end());
+                m.values.insert(m.values.end(), geometry.faceAreaVectors.begin(),
+                                geometry.faceAreaVectors.end());
+            }
+            channel_->send(m);
+        });
+    }
+
+    Command receive() override
+    {
+        Command c;
+        guard([&] {
+            comm::Message m = channel_->receiveAny();
+            c.step = static_cast<int>(m.timeStep);
+            c.iteration = static_cast<int>(m.iteration);
+            c.time = static_cast<double>(m.timeStep);
+            switch (m.kind)
+            {
+            case comm::MessageKind::Solve:
+                c.kind = CommandKind::solve;
+                c.displacements = std::move(m.values); // master only
+                break;
+            case comm::MessageKind::Accept:
+                c.kind = CommandKind::accept;
+                if (!m.scalars.empty())
+                    c.time = m.scalars[0];
+                break;
+            case comm::MessageKind::Finish:
+                c.kind = CommandKind::finish;
+                channel_->close();
+                break;
+            default:
+                throw comm::ProtocolError("fluid-app: unexpected " + comm::toString(m.kind) +
+                                              " from " + channel_->peerName() +
+                                              " (expected Solve, Accept or Finish)",
+                                          true, channel_->localRank());
+            }
+        });
+        return c;
+    }
+
+    void sendForces(const Command& solve, const ForceReport& report) override
+    {
+        guard([&] {
+            comm::Message m;
+            m.kind = comm::MessageKind::Forces;
+            m.timeStep = solve.step;
+            m.iteration = solve.iteration;
+            m.values = report.faceForces;
+            m.integers = {report.simpleIterations};
+            m.scalars = report.residuals;
+            channel_->send(m);
+        });
+    }
+
+    void abortRun(const std::string& reason) override
+    {
+        const std::runtime_error error("fluid-app: " + reason);
+        comm::exitOnError(error, channel_ ? &*channel_ : nullptr, comm::ErrorScope::AllRanks);
+    }
+
+    std::string describe() const override
+    {
+        std::ostringstream os;
+        os << "fsi::comm, launch " << comm::toString(options_.mode);
+        if (options_.mode == comm::LaunchMode::Port)
+            os << ", port file " << options_.portFile;
+        os << ", timeout " << options_.timeoutSeconds << " s";
+        if (channel_)
+            os << ", peer " << channel_->peerName();
+        return os.str();
+    }
+
+private:
+    // Every comm error ends the run through the comm layer's exit path
+    // (Abort to the peer, or MPI_Abort after a timeout).
+    template <class F> void guard(F&& f)
+    {
+        try
+        {
+            f();
+        }
+        catch (const std::exception& e)
+        {
+            comm::exitOnError(e, channel_ ? &*channel_ : nullptr);
+        }
+    }
+
+    comm::LaunchOptions options_;
+    std::optional<comm::Channel> channel_;
+};
+
+bool hasFlag(int argc, char** argv, const char* flag)
+{
+    for (int i = 1; i < argc; ++i)
+        if (std::strcmp(argv[i], flag) == 0)
+            return true;
+    return false;
+}
+
+} // namespace
+
+void initialiseComm(int& argc, char**& argv)
+{
+    try
+    {
+        if (hasFlag(argc, argv, "-rigid") || hasFlag(argc, argv, "-prescribed"))
+        {
+            launchOptions = comm::parseLaunchOptions(argc, argv); // strip the flags only
+            return;
+        }
+        launchOptions = comm::initialiseMpmdWorld(argc, argv);
+    }
+    catch (const std::exception& e)
+    {
+        comm::exitOnError(e, nullptr, comm::ErrorScope::AllRanks);
+    }
+}
+
+bool commAvailable() { return true; }
+
+std::unique_ptr<CouplingTransport> makeCommTransport()
+{
+    if (!launchOptions)
+        throw std::runtime_error("fluid-app: initialiseComm was not called first in main");
+    return std::make_unique<CommTransport>(*launchOptions);
+}
+
+} // namespace fsi::fluid
+
+#else // built without comm/
+
+namespace fsi
+{
+namespace fluid
+{
+void initialiseComm(int&, char**&) {}
+bool commAvailable() { return false; }
+std::unique_ptr<CouplingTransport> makeCommTransport() { return nullptr; }
+} // namespace fluid
+} // namespace fsi
+
+#endif
