@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Test double of the fluid for the driver layer's unit tests (the real fluid-app is used by the
+// integration tests). Its interface points and faces are the solid's wetted nodes; the force on
+// every face is (F0 / faces) (1 - kappa * mean(u_y)) in y. For a linear structure whose mean
+// wetted y-displacement under the load pattern alone is U1, the coupled fixed point is
+//   mean(u_y)* = U1 / (1 + kappa U1),
+// and plain fixed-point iteration (omega = 1) has the contraction factor -kappa U1.
+#pragma once
+
+#include "driver/FluidPeer.hpp"
+
+#include <stdexcept>
+#include <vector>
+
+namespace fsi::testing
+{
+
+class SpringBackFluid : public driver::FluidPeer
+{
+public:
+    SpringBackFluid(const std::vector<double>& wettedXyz, double totalForce, double kappa)
+        : totalForce_(totalForce), kappa_(kappa)
+    {
+        const Eigen::Index n = static_cast<Eigen::Index>(wettedXyz.size() / 3);
+        interface_.points.resize(n, 3);
+        for (Eigen::Index i = 0; i < n; ++i)
+            for (int k = 0; k < 3; ++k)
+                interface_.points(i, k) = wettedXyz[3 * i + k];
+        interface_.faceCentres = interface_.points;
+        interface_.faceAreas = mapping::PointCloud::Zero(n, 3);
+    }
+    const driver::FluidInterface& interface() const override { return interface_; }
+    driver::FluidResponse solve(int level, int iteration, double time,
+                                const mapping::Values& pointDisplacement) override
+    {
+        ++solves;
+        const double meanUy = pointDisplacement.col(1).mean();
+        driver::FluidResponse r;
+        const Eigen::Index n = interface_.faceCentres.rows();
+        r.faceForces = mapping::Values::Zero(n, 3);
+        r.faceForces.col(1).setConstant(totalForce_ / n * (1.0 - kappa_ * meanUy));
+        r.iterations = 1;
+        r.converged = true;
+        return r;
+    }
+    void accept(int level, double time) override { accepted.push_back(time); }
+    void finish() override { finished = true; }
+    void abort(const std::string& reason) noexcept override { abortReason = reason; }
+
+    int solves = 0;
+    std::vector<double> accepted;
+    bool finished = false;
+    std::string abortReason;
+
+private:
+    driver::FluidInterface interface_;
+    double totalForce_, kappa_;
+};
+
+} // namespace fsi::testing

@@ -1,0 +1,87 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "driver/TimeSchedule.hpp"
+
+#include <gtest/gtest.h>
+
+using namespace fsi::driver;
+
+namespace
+{
+std::vector<double> allTimes(TimeSchedule s, double change = 0.01)
+{
+    std::vector<double> t{s.time()};
+    while (s.hasNext())
+        t.push_back(s.advance(change));
+    return t;
+}
+} // namespace
+
+TEST(TimeSchedule, SteadyIsOneInstantaneousLevel)
+{
+    TimeSchedule s({}, {});
+    EXPECT_EQ(allTimes(s), std::vector<double>{0.0});
+    EXPECT_EQ(s.plannedLevels(), 1);
+}
+
+TEST(TimeSchedule, GeometricLandsOnHitTimesAndEnd)
+{
+    TimeScheduleParameters p;
+    p.type = "geometric";
+    p.end = 3600;
+    p.firstStep = 1;
+    p.growth = 2;
+    p.maxStep = 600;
+    p.hit = {50, 360};
+    const auto t = allTimes(TimeSchedule(p, {}));
+    EXPECT_EQ(t.front(), 0.0);
+    EXPECT_DOUBLE_EQ(t.back(), 3600.0);
+    EXPECT_NE(std::find(t.begin(), t.end(), 50.0), t.end());
+    EXPECT_NE(std::find(t.begin(), t.end(), 360.0), t.end());
+    for (std::size_t i = 1; i < t.size(); ++i)
+    {
+        EXPECT_GT(t[i], t[i - 1]);
+        EXPECT_LE(t[i] - t[i - 1], 600.0 + 1e-9);
+    }
+    // 0,1,3,7,15,31,50(hit),63? no: after the hit the geometric step continues from its sequence.
+    EXPECT_DOUBLE_EQ(t[1], 1.0);
+    EXPECT_DOUBLE_EQ(t[2], 3.0);
+}
+
+TEST(TimeSchedule, AdaptiveStartsFromTheShortestRelaxationTimeAndFollowsTheChange)
+{
+    TimeScheduleParameters p;
+    p.type = "adaptive";
+    p.end = 100;
+    p.targetChange = 0.02;
+    p.growthLimit = 2;
+    p.shrinkLimit = 0.5;
+    p.hit = {50};
+    TimeSchedule s(p, {4.13, 81.95, 1610});
+    EXPECT_DOUBLE_EQ(s.advance(0.0), 0.413);            // first step = min tau / 10
+    EXPECT_DOUBLE_EQ(s.advance(0.04), 0.413 + 0.2065);  // change 2x target: halve
+    EXPECT_NEAR(s.advance(0.001), 0.6195 + 0.413, 1e-12); // small change: growth limit 2
+    std::vector<double> t;
+    while (s.hasNext())
+        t.push_back(s.advance(0.001));
+    EXPECT_NE(std::find(t.begin(), t.end(), 50.0), t.end());
+    EXPECT_DOUBLE_EQ(t.back(), 100.0);
+}
+
+TEST(TimeSchedule, InvalidParametersNameTheKey)
+{
+    TimeScheduleParameters p;
+    p.type = "list";
+    p.times = {1, 2};
+    try
+    {
+        p.validate();
+        FAIL();
+    }
+    catch (const std::runtime_error& e)
+    {
+        EXPECT_NE(std::string(e.what()).find("coupling.time.times"), std::string::npos);
+    }
+    p.type = "adaptive";
+    p.end = 10;
+    EXPECT_THROW(TimeSchedule(p, {}), std::runtime_error); // elastic: first_step required
+}
