@@ -14,8 +14,10 @@ namespace
 using ConstMap = Eigen::Map<const Vector6>;
 using Map = Eigen::Map<Vector6>;
 
-void checkStep(const TimeStep& step)
+void checkStep(const TimeStep& step, const double* history)
 {
+    if (history == nullptr)
+        throw std::invalid_argument("viscoelastic: committed history is null (historySize() > 0)");
     if (!(step.dt >= 0.0))
         throw std::runtime_error("viscoelastic: time step dt = " + std::to_string(step.dt) +
                                  " < 0; time levels must increase");
@@ -34,7 +36,7 @@ Viscoelastic::Viscoelastic(double bulkModulus, double longTermShearModulus,
 void Viscoelastic::evaluate(const Vector6& strain, const TimeStep& step, const double* history,
                             Vector6& stress, Matrix6& tangent) const
 {
-    checkStep(step);
+    checkStep(step, history);
     const std::size_t n = gamma_.size();
     const Vector6 devSigma0 = 2.0 * longTermShearModulus_ * (deviatoricProjector() * strain);
     const Vector6 increment = devSigma0 - ConstMap(history + 6 * n);
@@ -54,7 +56,7 @@ void Viscoelastic::evaluate(const Vector6& strain, const TimeStep& step, const d
 void Viscoelastic::updateHistory(const Vector6& strain, const TimeStep& step, const double* history,
                                  double* newHistory) const
 {
-    checkStep(step);
+    checkStep(step, history);
     const std::size_t n = gamma_.size();
     const Vector6 devSigma0 = 2.0 * longTermShearModulus_ * (deviatoricProjector() * strain);
     const Vector6 increment = devSigma0 - ConstMap(history + 6 * n);
