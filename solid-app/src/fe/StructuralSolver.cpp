@@ -70,14 +70,27 @@ StructuralSolver::StructuralSolver(MPI_Comm comm, const mesh::Mesh& mesh, const 
         for (int node : mesh_.surface(name).nodes)
             for (int c = 0; c < 3; ++c)
                 fixed[3 * node + c] = 1;
-    for (const auto& d : problem_.displacements)
-        for (int node : mesh_.surface(d.surface).nodes)
+    std::vector<int> fieldOf(mesh_.numNodes(), -1);
+    for (std::size_t k = 0; k < problem_.displacements.size(); ++k) {
+        const auto& d = problem_.displacements[k];
+        for (int node : mesh_.surface(d.surface).nodes) {
+            if (d.field) {
+                fieldOf[node] = static_cast<int>(k);
+                for (int c = 0; c < 3; ++c)
+                    fixed[3 * node + c] = 1;
+                continue;
+            }
             for (int c = 0; c < 3; ++c)
                 if (d.value[c]) {
                     if (!fixed[3 * node + c] || value[3 * node + c] == 0.0)
                         value[3 * node + c] = *d.value[c];
                     fixed[3 * node + c] = 1;
                 }
+        }
+    }
+    for (int node = 0; node < mesh_.numNodes(); ++node)
+        if (fieldOf[node] >= 0)
+            fieldNodes_.emplace_back(node, fieldOf[node]);
     equation_.assign(nDofs, -1);
     for (int dof = 0; dof < nDofs; ++dof) {
         if (fixed[dof]) {
@@ -158,6 +171,11 @@ void StructuralSolver::applyPrescribed(double factor, std::vector<double>& u) co
 {
     for (std::size_t k = 0; k < prescribedDofs_.size(); ++k)
         u[prescribedDofs_[k]] = factor * prescribedValues_[k];
+    for (const auto& [node, k] : fieldNodes_) {
+        const Eigen::Vector3d v = problem_.displacements[k].field(mesh_.nodes.col(node), factor);
+        for (int c = 0; c < 3; ++c)
+            u[3 * node + c] = v[c];
+    }
 }
 
 void StructuralSolver::buildExternalLoads(double factor, const InterfaceLoads& interface,
@@ -285,7 +303,9 @@ bool StructuralSolver::newton(const std::vector<double>& fext, double factor, st
             fi2 += fint[dof] * fint[dof];
         }
         norm = freeNorm(R);
-        ref = std::max(std::sqrt(fe2), std::sqrt(fi2));
+        // the largest force seen in this solve: a zero-force solution (rigid motion) has
+        // f_int -> 0, which must not turn the relative tolerance into round-off
+        ref = std::max({ref, std::sqrt(fe2), std::sqrt(fi2)});
         return std::isfinite(norm);
     };
     report.residuals.clear();
@@ -314,7 +334,7 @@ bool StructuralSolver::newton(const std::vector<double>& fext, double factor, st
                     du[equation_[dof]] = R[dof];
         linear_->solveSummedRhs(du);
         // line search on ||R||
-        double alpha = 1.0, trialNorm = 0.0, trialRef = 0.0;
+        double alpha = 1.0, trialNorm = 0.0, trialRef = ref;
         bool accepted = false;
         for (int cut = 0; cut <= (nw.lineSearch ? 4 : 0); ++cut, alpha *= 0.5) {
             trial = u;

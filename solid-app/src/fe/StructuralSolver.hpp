@@ -27,6 +27,7 @@
 #include <mpi.h>
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -47,6 +48,10 @@ struct PrescribedDisplacement
 {
     std::string surface;
     std::array<std::optional<double>, 3> value;   // [m]; unset components are free
+    // Optional field u(X, loadFactor) [m] of the reference position: if set it prescribes all
+    // three components at each node of the surface (value is then ignored; the field gets the
+    // load factor itself, e.g. a rotation angle, and is not scaled).
+    std::function<Eigen::Vector3d(const Eigen::Vector3d&, double)> field;
 };
 
 struct SurfaceTraction
@@ -159,6 +164,7 @@ private:
     int numFree_ = 0;
     std::vector<int> prescribedDofs_;
     std::vector<double> prescribedValues_;    // at load factor 1
+    std::vector<std::pair<int, int>> fieldNodes_;   // (node, index in problem_.displacements)
     std::vector<int> wettedNodes_;
 
     std::unique_ptr<linalg::SparseDirectSolver> linear_;
