@@ -10,7 +10,9 @@
 namespace fsi::linalg
 {
 
-// MUMPS ICNTL(7) values.
+// MUMPS ICNTL(7) values. Debian's MUMPS 5.5 has neither METIS nor SCOTCH compiled in:
+// Metis is computed by this wrapper (METIS_NodeND -> PERM_IN); Scotch falls back to MUMPS'
+// automatic choice.
 enum class Ordering : int
 {
     Amd = 0,
@@ -40,9 +42,9 @@ struct DirectSolverOptions
 //
 // Matrix input is distributed assembled triplets (ICNTL(18)=3): each rank passes its
 // own (row, col, value) triplets, 0-BASED global indices in [0, n); duplicates (also
-// across ranks) are summed. With symmetric == true the caller passes the FULL matrix
-// (what an element assembler produces); entries with row < col are dropped, the lower
-// triangle is used. Right-hand side and solution are centralized on rank 0.
+// across ranks) are summed. With symmetric == true the caller passes the full matrix
+// (what an element assembler produces) or its lower triangle: entries with row < col are
+// dropped. Right-hand side and solution are centralized on rank 0.
 class SparseDirectSolver
 {
 public:
@@ -53,7 +55,8 @@ public:
 
     // Global size n and this rank's triplet positions. Symbolic analysis (ordering) is
     // done at the next factorize(), and only if the pattern differs from the last one
-    // on some rank (same pattern again: no new analysis). Values become unset.
+    // on some rank (same pattern again: no new analysis, values kept). A changed pattern
+    // unsets the values: call setValues() before the next factorize().
     void setPattern(int n, std::vector<int> rows, std::vector<int> cols);
 
     // Values in the same order as this rank's pattern (size == rows.size()). Marks the
