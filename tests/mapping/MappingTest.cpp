@@ -127,6 +127,33 @@ INSTANTIATE_TEST_SUITE_P(Kinds, RbfMapping,
                                                                    : std::string("WendlandC2");
                          });
 
+TEST(WendlandIterative, MatchesDirectAndKeepsTheExactProperties)
+{
+    // CG solves only to 1e-10, yet force, moment and linear fields stay exact: the polynomial
+    // part never goes through the solver.
+    const PointCloud s = solidCylinder(24), t = fluidCylinder(24);
+    auto p = params("rbf-wendland-c2");
+    p.wendland.solver = "direct";
+    const auto direct = buildMapping(p, s, t);
+    p.wendland.solver = "iterative";
+    const auto iterative = buildMapping(p, s, t);
+    const Values g = faceForces(t.rows());
+    Values fd(s.rows(), 3), fi(s.rows(), 3), ui(t.rows(), 3), ud(t.rows(), 3);
+    direct->applyConservative(g, fd);
+    iterative->applyConservative(g, fi);
+    const double forceScale = g.cwiseAbs().colwise().sum().norm();
+    const double momentScale = forceScale * Values(t).rowwise().norm().maxCoeff();
+    EXPECT_LT((fi.colwise().sum() - g.colwise().sum()).norm() / forceScale, 1e-12);
+    EXPECT_LT((totalMoment(s, fi) - totalMoment(t, g)).norm() / momentScale, 1e-12);
+    EXPECT_LT((fi - fd).norm() / fd.norm(), 1e-8);
+    iterative->applyConsistent(linearField(s), ui);
+    EXPECT_LT(relativeMaxError(ui, linearField(t)), 1e-10);
+    const Values smooth = linearField(s).array().sin();
+    iterative->applyConsistent(smooth, ui);
+    direct->applyConsistent(smooth, ud);
+    EXPECT_LT((ui - ud).norm() / ud.norm(), 1e-8);
+}
+
 TEST(NearestNeighbourMapping, ConservesForceAndMovesMomentByTheNodeOffsets)
 {
     // Total force is conserved. The moment is conserved only where face centres and nodes

@@ -18,6 +18,15 @@ void WendlandParameters::validate() const
         throw std::runtime_error("mapping.support_radius must be > 0 m for type rbf-wendland-c2 "
                                  "(got " + std::to_string(supportRadius) +
                                  "); set it to a few solid node spacings");
+    if (solver != "auto" && solver != "direct" && solver != "iterative")
+        throw std::runtime_error("mapping.solver '" + solver +
+                                 "' is unknown; use auto, direct or iterative");
+    if (directMaxPoints < 0)
+        throw std::runtime_error("mapping.direct_max_points must be >= 0 (got " +
+                                 std::to_string(directMaxPoints) + "); e.g. 20000");
+    if (!(iterativeTolerance > 0.0 && iterativeTolerance < 1.0))
+        throw std::runtime_error("mapping.iterative_tolerance must be in (0, 1) (got " +
+                                 std::to_string(iterativeTolerance) + "); e.g. 1e-10");
 }
 
 void ThinPlateParameters::validate() const
@@ -48,7 +57,7 @@ std::unique_ptr<Mapping> makeMapping(const MappingParameters& params)
     if (params.type == "rbf-thin-plate")
         return std::make_unique<RbfThinPlate>(params.thinPlate.maxSourcePoints);
     if (params.type == "rbf-wendland-c2")
-        return std::make_unique<RbfWendlandC2>(params.wendland.supportRadius);
+        return std::make_unique<RbfWendlandC2>(params.wendland);
     return std::make_unique<NearestNeighbour>();
 }
 

@@ -63,7 +63,12 @@ protected:
 struct WendlandParameters
 {
     double supportRadius = 0.0; // rho [m]; a few source-node spacings (3..6 is typical)
-    void validate() const;      // throws: support_radius must be > 0
+    // "direct" (sparse LDLT, fast apply, fill grows fast with N) | "iterative" (CG with
+    // incomplete Cholesky, to iterative_tolerance) | "auto" (direct up to direct_max_points)
+    std::string solver = "auto";
+    long directMaxPoints = 20000;
+    double iterativeTolerance = 1e-10; // relative residual of each CG solve
+    void validate() const;             // throws: support_radius must be > 0, ...
 };
 
 // Coefficients of rbf-thin-plate: phi(r) = r^2 log r, global and dense (O(N^3) set-up).

@@ -4,6 +4,7 @@
 #include "mapping/KdTree.hpp"
 #include "mapping/RbfSupport.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -27,10 +28,10 @@ void resizeWorkspace(Eigen::MatrixXd& m, Eigen::Index rows, Eigen::Index cols)
         m.resize(rows, cols);
 }
 
-// Triplets phi(|q_i - s_j| / rho) for all s_j within rho of q_i; lowerOnly keeps j <= i.
+// Triplets phi(|q_i - s_j| / rho) for all s_j within rho of q_i.
 // Returns the index of a query with no neighbour, or -1.
 Eigen::Index kernelTriplets(const KdTree& tree, const PointCloud& queries, double rho,
-                            bool lowerOnly, std::vector<Eigen::Triplet<double>>& triplets)
+                            std::vector<Eigen::Triplet<double>>& triplets)
 {
     std::vector<std::pair<Eigen::Index, double>> found;
     for (Eigen::Index i = 0; i < queries.rows(); ++i)
@@ -39,8 +40,7 @@ Eigen::Index kernelTriplets(const KdTree& tree, const PointCloud& queries, doubl
         if (found.empty())
             return i;
         for (const auto& [j, d2] : found)
-            if (!lowerOnly || j <= i)
-                triplets.emplace_back(i, j, wendlandC2(std::sqrt(d2) / rho));
+            triplets.emplace_back(i, j, wendlandC2(std::sqrt(d2) / rho));
     }
     return -1;
 }
@@ -48,28 +48,36 @@ Eigen::Index kernelTriplets(const KdTree& tree, const PointCloud& queries, doubl
 
 void RbfWendlandC2::compute(const PointCloud& source, const PointCloud& target)
 {
-    if (!(supportRadius_ > 0.0))
-        throw std::runtime_error("mapping rbf-wendland-c2: mapping.support_radius must be > 0 m");
+    params_.validate();
+    iterative_ = params_.solver == "iterative" ||
+                 (params_.solver == "auto" && source.rows() > params_.directMaxPoints);
     detail::checkDistinctPoints(source, "rbf-wendland-c2");
     const detail::Normalisation normalisation(source);
     const PointCloud s = normalisation.apply(source), t = normalisation.apply(target);
-    const double rho = supportRadius_ / normalisation.scale;
+    const double rho = params_.supportRadius / normalisation.scale;
     const KdTree tree(s);
 
     std::vector<Eigen::Triplet<double>> triplets;
-    triplets.reserve(static_cast<size_t>(s.rows()) * 16);
-    kernelTriplets(tree, s, rho, true, triplets);
-    Eigen::SparseMatrix<double> system(s.rows(), s.rows());
-    system.setFromTriplets(triplets.begin(), triplets.end());
-    systemNonZeros_ = 2 * system.nonZeros() - s.rows();
-    ldlt_.compute(system);
-    if (ldlt_.info() != Eigen::Success)
+    triplets.reserve(static_cast<size_t>(s.rows()) * 32);
+    kernelTriplets(tree, s, rho, triplets);
+    system_.resize(s.rows(), s.rows());
+    system_.setFromTriplets(triplets.begin(), triplets.end());
+    systemNonZeros_ = system_.nonZeros();
+    if (iterative_)
+    {
+        cg_.setTolerance(params_.iterativeTolerance);
+        cg_.setMaxIterations(std::max<Eigen::Index>(1000, s.rows()));
+        cg_.compute(system_);
+    }
+    else
+        ldlt_.compute(system_);
+    if ((iterative_ ? cg_.info() : ldlt_.info()) != Eigen::Success)
         throw std::runtime_error("mapping rbf-wendland-c2: factorisation of the RBF matrix "
                                  "failed; check for near-duplicate source points or change "
                                  "mapping.support_radius");
 
     triplets.clear();
-    const Eigen::Index lonely = kernelTriplets(tree, t, rho, false, triplets);
+    const Eigen::Index lonely = kernelTriplets(tree, t, rho, triplets);
     if (lonely >= 0)
     {
         char where[160];
@@ -78,7 +86,7 @@ void RbfWendlandC2::compute(const PointCloud& source, const PointCloud& target)
                       static_cast<long>(lonely), p(0), p(1), p(2));
         throw std::runtime_error(std::string("mapping rbf-wendland-c2: ") + where +
                                  " has no source point within mapping.support_radius " +
-                                 std::to_string(supportRadius_) +
+                                 std::to_string(params_.supportRadius) +
                                  " m; raise support_radius to a few solid node spacings");
     }
     evaluation_.resize(t.rows(), s.rows());
@@ -91,6 +99,26 @@ void RbfWendlandC2::compute(const PointCloud& source, const PointCloud& target)
     targetSize_ = t.rows();
 }
 
+void RbfWendlandC2::solve(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& solution) const
+{
+    if (!iterative_)
+    {
+        solution = ldlt_.solve(rhs);
+        return;
+    }
+    lastIterations_ = 0;
+    for (Eigen::Index j = 0; j < rhs.cols(); ++j)
+    {
+        solution.col(j) = cg_.solve(rhs.col(j));
+        lastIterations_ = std::max(lastIterations_, cg_.iterations());
+        if (cg_.info() != Eigen::Success)
+            throw std::runtime_error(
+                "mapping rbf-wendland-c2: conjugate gradients did not converge in " +
+                std::to_string(cg_.iterations()) +
+                " iterations; use mapping.solver direct or a smaller support_radius");
+    }
+}
+
 void RbfWendlandC2::applyConsistent(const Eigen::Ref<const Values>& sourceValues,
                                     Eigen::Ref<Values> targetValues) const
 {
@@ -101,7 +129,7 @@ void RbfWendlandC2::applyConsistent(const Eigen::Ref<const Values>& sourceValues
     polynomial_.noalias() = sourceBasis_.transpose() * sourceValues;
     residual_ = sourceValues;
     residual_.noalias() -= sourceBasis_ * polynomial_;
-    coefficients_ = ldlt_.solve(residual_);
+    solve(residual_, coefficients_);
     targetValues.noalias() = evaluation_ * coefficients_;
     targetValues.noalias() += targetBasis_ * polynomial_;
 }
@@ -115,7 +143,7 @@ void RbfWendlandC2::applyConservative(const Eigen::Ref<const Values>& targetValu
     resizeWorkspace(residual_, sourceSize_, k);
     resizeWorkspace(coefficients_, sourceSize_, k);
     residual_.noalias() = evaluation_.transpose() * targetValues;
-    coefficients_ = ldlt_.solve(residual_);
+    solve(residual_, coefficients_);
     projected_.noalias() = sourceBasis_.transpose() * coefficients_;
     polynomial_.noalias() = targetBasis_.transpose() * targetValues;
     sourceValues = coefficients_;

@@ -5,15 +5,20 @@
 // Polynomial handling: separate least-squares fit, then the RBF on the residual
 // (not the saddle-point system, so the sparse matrix stays symmetric positive definite):
 //   b = Q^T f            (Q: orthonormal linear basis at the sources, least-squares fit)
-//   Phi c = f - Q b      (sparse, SimplicialLDLT with AMD ordering, factorised once)
+//   Phi c = f - Q b      (sparse SPD; direct: SimplicialLDLT with AMD ordering, factorised once;
+//                         iterative: conjugate gradients with incomplete Cholesky, for large N)
 //   target = Phi_ts c + Q_t b
 // i.e. H = Phi_ts Phi^{-1} (I - Q Q^T) + Q_t Q^T, which interpolates the sources and reproduces
 // linear fields exactly. Conservative: H^T g = (I - Q Q^T) Phi^{-1} Phi_ts^T g + Q Q_t^T g.
 // Every target point needs at least one source point within rho (checked in compute()).
+// Because 1, x, y, z lie in span(Q), (I - Q Q^T) removes them exactly: total force and moment
+// are conserved to round-off and linear fields reproduced whatever the accuracy of the solve.
+// Direct apply allocates nothing; the iterative one allocates a few work vectors per solve.
 #pragma once
 
 #include "mapping/Mapping.hpp"
 
+#include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
@@ -23,7 +28,8 @@ namespace fsi::mapping
 class RbfWendlandC2 final : public Mapping
 {
 public:
-    explicit RbfWendlandC2(double supportRadius) : supportRadius_(supportRadius) {}
+    // Pre: params.validate() passes. solver "auto" is resolved in compute() by the source size.
+    explicit RbfWendlandC2(const WendlandParameters& params) : params_(params) {}
     std::string name() const override { return "rbf-wendland-c2"; }
     void compute(const PointCloud& source, const PointCloud& target) override;
     void applyConsistent(const Eigen::Ref<const Values>& sourceValues,
@@ -34,10 +40,21 @@ public:
     // Non-zeros of the source matrix Phi and of the evaluation matrix Phi_ts (for the log).
     Eigen::Index systemNonZeros() const { return systemNonZeros_; }
     Eigen::Index evaluationNonZeros() const { return evaluation_.nonZeros(); }
+    bool iterative() const { return iterative_; }
+    // CG iterations of the last solve (0 for the direct solver).
+    Eigen::Index lastIterations() const { return lastIterations_; }
 
 private:
-    double supportRadius_; // m
+    void solve(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& solution) const;
+
+    WendlandParameters params_;
+    bool iterative_ = false;
+    Eigen::SparseMatrix<double> system_; // Phi, both triangles (the CG solver refers to it)
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> ldlt_;
+    Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper,
+                             Eigen::IncompleteCholesky<double>>
+        cg_;
+    mutable Eigen::Index lastIterations_ = 0;
     Eigen::SparseMatrix<double, Eigen::RowMajor> evaluation_; // Phi_ts, N_t x N_s
     Eigen::MatrixXd sourceBasis_, targetBasis_;               // Q (N_s x r), Q_t (N_t x r)
     Eigen::Index systemNonZeros_ = 0;
