@@ -34,6 +34,8 @@ public:
                                 const mapping::Values& pointDisplacement) override
     {
         ++solves;
+        if (pointDisplacement.rows() == 0) // not the solid's rank 0: nothing significant
+            return {};
         const double meanUy = pointDisplacement.col(1).mean();
         driver::FluidResponse r;
         const Eigen::Index n = interface_.faceCentres.rows();

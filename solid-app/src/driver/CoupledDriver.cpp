@@ -73,11 +73,23 @@ struct CoupledDriver::Impl
         MPI_Comm_rank(comm, &rank);
     }
 
+    // Collective: every rank calls it with the same reason.
     [[noreturn]] void fail(const std::string& reason)
     {
-        if (rank == 0 && fluid)
-            fluid->abort(reason);
+        fluid->abort(reason);
         throw std::runtime_error(reason);
+    }
+
+    // Broadcasts rank 0's error text; fails on every rank if it is not empty.
+    void failIfRootFailed(std::string error)
+    {
+        int len = static_cast<int>(error.size());
+        MPI_Bcast(&len, 1, MPI_INT, 0, comm);
+        if (len == 0)
+            return;
+        error.resize(len);
+        MPI_Bcast(error.data(), len, MPI_CHAR, 0, comm);
+        fail(error);
     }
 
     void say(const std::string& line) const
@@ -101,8 +113,8 @@ CoupledDriver::CoupledDriver(MPI_Comm comm, fe::StructuralSolver& solid, FluidPe
     : impl_(std::make_unique<Impl>(comm, solid, fluid, std::move(params), std::move(outputFolder),
                                    std::move(relaxationTimes), std::move(watched)))
 {
-    if (impl_->rank == 0 && !fluid)
-        throw std::logic_error("CoupledDriver: rank 0 needs a fluid peer");
+    if (!fluid)
+        throw std::logic_error("CoupledDriver: every rank needs the fluid peer");
 }
 
 CoupledDriver::~CoupledDriver() = default;
@@ -124,30 +136,36 @@ void CoupledDriver::Impl::setUp()
         if (angleLeading == angleTrailing)
             throw std::runtime_error("coupling.section_angle: leading and trailing edge map to the same node");
     }
-    if (rank != 0)
-        return;
     const auto solidNodes = toCloud(solid.wettedNodeCoordinates());
     if (solidNodes.rows() == 0)
-        throw std::runtime_error("solid mesh: the wetted surface has no nodes (check mesh.wetted)");
-    const auto& fi = fluid->interface();
+        fail("solid mesh: the wetted surface has no nodes (check mesh.wetted)");
+    std::string error;
     const auto t0 = Clock::now();
-    try
+    if (rank == 0)
     {
-        displacementMap = mapping::buildMapping(params.mapping, solidNodes, fi.points);
-        forceMap = mapping::buildMapping(params.mapping, solidNodes, fi.faceCentres);
+        try
+        {
+            const auto& fi = fluid->interface();
+            displacementMap = mapping::buildMapping(params.mapping, solidNodes, fi.points);
+            forceMap = mapping::buildMapping(params.mapping, solidNodes, fi.faceCentres);
+            std::filesystem::create_directories(outputFolder + "/interface");
+            writeHeaders();
+        }
+        catch (const std::exception& e)
+        {
+            error = std::string("interface set-up: ") + e.what();
+        }
     }
-    catch (const std::exception& e)
-    {
-        fail(std::string("interface mapping: ") + e.what());
-    }
+    failIfRootFailed(error);
+    if (rank != 0)
+        return;
+    const auto& fi = fluid->interface();
     say("[mapping] " + params.mapping.type + ": " + std::to_string(solidNodes.rows()) +
         " solid wetted nodes, " + std::to_string(fi.points.rows()) + " fluid points, " +
         std::to_string(fi.faceCentres.rows()) + " fluid faces; set-up " +
         std::to_string(secondsSince(t0)) + " s");
     say("[mapping] points: " + mapping::assessQuality(*displacementMap, solidNodes, fi.points).toString());
     say("[mapping] faces:  " + mapping::assessQuality(*forceMap, solidNodes, fi.faceCentres).toString());
-    std::filesystem::create_directories(outputFolder + "/interface");
-    writeHeaders();
 }
 
 void CoupledDriver::Impl::writeHeaders()
@@ -253,18 +271,21 @@ RunSummary CoupledDriver::run()
         for (int it = 1; it <= m.params.maxIterations; ++it)
         {
             double wallFluid = 0, wallMapping = 0;
-            FluidResponse response;
+            auto t0 = Clock::now();
+            mapping::Values pointDisplacement;
             if (m.rank == 0)
             {
-                auto t0 = Clock::now();
                 mapping::Values nodal = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(
                     iterate.data(), n / 3, 3);
-                mapping::Values pointDisplacement(m.displacementMap->targetSize(), 3);
+                pointDisplacement.resize(m.displacementMap->targetSize(), 3);
                 m.displacementMap->applyConsistent(nodal, pointDisplacement);
                 wallMapping += secondsSince(t0);
-                t0 = Clock::now();
-                response = m.fluid->solve(level, it, time, pointDisplacement);
-                wallFluid = secondsSince(t0);
+            }
+            t0 = Clock::now();
+            const FluidResponse response = m.fluid->solve(level, it, time, pointDisplacement);
+            wallFluid = secondsSince(t0);
+            if (m.rank == 0)
+            {
                 t0 = Clock::now();
                 mapping::Values forces(n / 3, 3);
                 m.forceMap->applyConservative(response.faceForces, forces);
@@ -277,7 +298,7 @@ RunSummary CoupledDriver::run()
             }
             MPI_Bcast(nodalForce.data(), n, MPI_DOUBLE, 0, m.comm);
 
-            auto t0 = Clock::now();
+            t0 = Clock::now();
             fe::InterfaceLoads loads{std::vector<double>(nodalForce.data(), nodalForce.data() + n)};
             const auto report = m.solid.solve({time, dt}, loads);
             const double wallSolid = secondsSince(t0);
@@ -347,14 +368,8 @@ RunSummary CoupledDriver::run()
                 break;
         }
         if (decision == Diverged)
-        {
-            int len = static_cast<int>(failure.size());
-            MPI_Bcast(&len, 1, MPI_INT, 0, m.comm);
-            failure.resize(len);
-            MPI_Bcast(failure.data(), len, MPI_CHAR, 0, m.comm);
-            m.fail("level " + std::to_string(level) + " (t = " + std::to_string(time) +
-                   " s) diverged: " + failure);
-        }
+            m.failIfRootFailed("level " + std::to_string(level) + " (t = " + std::to_string(time) +
+                               " s) diverged: " + failure);
         record.converged = decision == Converged;
         if (!record.converged)
         {
@@ -370,8 +385,7 @@ RunSummary CoupledDriver::run()
 
         m.accelerator->endLevel();
         m.solid.acceptLevel();
-        if (m.rank == 0)
-            m.fluid->accept(level, time);
+        m.fluid->accept(level, time);
 
         const double norm = solverOutput.norm();
         record.relativeChange = norm > 0 ? (solverOutput - uLast).norm() / norm : 0.0;
@@ -417,8 +431,7 @@ RunSummary CoupledDriver::run()
         dtLast = dt;
         schedule.advance(record.relativeChange);
     }
-    if (m.rank == 0)
-        m.fluid->finish();
+    m.fluid->finish();
     summary.factorizations = m.solid.factorizationCount();
     summary.wallSeconds = secondsSince(runStart);
     return summary;

@@ -67,8 +67,8 @@ struct RunSummary
 class CoupledDriver
 {
 public:
-    // solid: the structural solver (not owned, outlives the driver). fluid: non-null on rank 0
-    // of `comm` only (not owned). outputFolder: where coupling.csv, history.csv and
+    // solid: the structural solver (not owned, outlives the driver). fluid: the fluid peer,
+    // non-null on every rank of `comm` (not owned; called collectively). outputFolder: where coupling.csv, history.csv and
     // interface/ are written (rank 0; created if missing). relaxationTimes: the material's
     // Prony tau_i (empty: elastic) for the adaptive time schedule.
     CoupledDriver(MPI_Comm comm, fe::StructuralSolver& solid, FluidPeer* fluid,

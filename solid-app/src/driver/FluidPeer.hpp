@@ -2,7 +2,9 @@
 //
 // The fluid solver as the coupling driver sees it: the driver commands, the fluid answers.
 // The production implementation talks to fluid-app through fsi::comm (CommFluidPeer); unit
-// tests of the driver layer may use a test double. Used on the solid's rank 0 only.
+// tests of the driver layer may use a test double. Every call is made on ALL ranks of the
+// solid's communicator (the transport is collective); arguments and results are significant
+// on rank 0 only.
 #pragma once
 
 #include "mapping/Mapping.hpp"
@@ -34,6 +36,7 @@ class FluidPeer
 {
 public:
     virtual ~FluidPeer() = default;
+    // Significant on rank 0.
     virtual const FluidInterface& interface() const = 0;
     // Move the interface points by pointDisplacement (relative to the reference geometry,
     // points x 3 [m]) and solve the steady flow for level `level` at time `time` [s].
