@@ -4,20 +4,22 @@
 #
 #   cases/hydrofoil/mesh.sh --out DIR [--preset coarse|medium|fine] [--tc 0.12] [--cli 0.5]
 #                           [--meanline a08|a08mod] [--layers N] [--np N]
-#                           [--fluid-only | --solid-only]
+#                           [--fluid-only | --solid-only] [--curved]
 #
 # Writes
 #   DIR/geometry/   section.csv, foil.stl (closed), foil.geo (Gmsh), snappy.stl (root extended)
 #   DIR/fluid/      OpenFOAM v1912 case: blockMesh + snappyHexMesh mesh, 0/ U p pointDisplacement,
 #                   checkMesh log (must say "Mesh OK"; the script fails otherwise)
 #   DIR/solid/      foil-tet10.msh (v4), foil-tet10-msh22.msh (v2), foil-hex20.msh, foil-hex27.msh
+#                   (second order, straight-sided; --curved: Tet10 mid-nodes on the curved
+#                   surface, optimised by Gmsh, slow); physical groups volume, clamped, wetted
 #   DIR/mesh-summary.txt  cell / node / element counts
 # Needs Debian's openfoam (blockMesh, surfaceFeatureExtract, snappyHexMesh, checkMesh), gmsh and
 # /usr/bin/python3 with numpy.
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-preset=coarse tc=0.12 cli=0.5 meanline=a08 out="" layers="" np=1 doFluid=1 doSolid=1
+preset=coarse tc=0.12 cli=0.5 meanline=a08 out="" layers="" np=1 doFluid=1 doSolid=1 curved=0
 
 usage() { sed -n '3,8p' "$0" | sed 's/^# \{0,1\}//'; }
 die() { echo "error: mesh.sh: $*" >&2; exit 1; }
@@ -32,6 +34,7 @@ while [ $# -gt 0 ]; do
         --layers) layers="$2"; shift 2 ;;
         --np) np="$2"; shift 2 ;;
         --fluid-only) doSolid=0; shift ;;
+        --curved) curved=1; shift ;;
         --solid-only) doFluid=0; shift ;;
         -h|--help) usage; exit 0 ;;
         *) die "unknown option '$1' (see --help)" ;;
@@ -45,16 +48,17 @@ case "$out/" in
     "$here"/*) die "--out '$out' is inside cases/hydrofoil; generate into a run folder outside git" ;;
 esac
 
-# Solid mesh presets: Tet10 size lc (m); Hex divisions chord x thickness x span (+ nose)
+# Solid mesh presets: Tet10 size lc (m; lc/4 at the leading and trailing edges); Hex divisions
+# along the chord (each of upper and lower side) x through the thickness x along the span
 case "$preset" in
-    coarse) lc=0.010; hexC=24; hexT=4; hexS=12; hexN=8 ;;
-    medium) lc=0.006; hexC=40; hexT=6; hexS=20; hexN=12 ;;
-    fine)   lc=0.004; hexC=64; hexT=8; hexS=32; hexN=16 ;;
+    coarse) lc=0.010; hexC=24; hexT=4; hexS=12 ;;
+    medium) lc=0.006; hexC=40; hexT=6; hexS=20 ;;
+    fine)   lc=0.004; hexC=64; hexT=8; hexS=32 ;;
 esac
 
 log() { echo "[mesh.sh $(date +%H:%M:%S)] $*"; }
 summary="$out/mesh-summary.txt"
-echo "hydrofoil meshes: preset=$preset tc=$tc cli=$cli meanline=$meanline" > "$summary"
+echo "hydrofoil meshes ($(date -u +%FT%TZ)): preset=$preset tc=$tc cli=$cli meanline=$meanline" >> "$summary"
 
 # ---- geometry ------------------------------------------------------------------------------
 log "geometry (t/c=$tc, C_Li=$cli, $meanline)"
@@ -117,25 +121,45 @@ if [ "$doFluid" = 1 ]; then
 fi
 
 # ---- solid ---------------------------------------------------------------------------------
+# minimum of minJ/maxJ over the 3-D elements (Gmsh plugin AnalyseMeshQuality)
+jacobianRatio() {
+    local q; q="$(mktemp --suffix=.geo)"
+    cat > "$q" <<EOF
+Merge "$1";
+Plugin(AnalyseMeshQuality).JacobianDeterminant = 1;
+Plugin(AnalyseMeshQuality).IGEMeasure = 0;
+Plugin(AnalyseMeshQuality).ICNMeasure = 0;
+Plugin(AnalyseMeshQuality).DimensionOfElements = 3;
+Plugin(AnalyseMeshQuality).CreateView = 0;
+Plugin(AnalyseMeshQuality).Run;
+EOF
+    gmsh "$q" -0 -o /dev/null 2>&1 | awk '/minJ\/maxJ/{sub(",", "", $5); print $5; exit}'
+    rm -f "$q"
+}
 if [ "$doSolid" = 1 ]; then
     solid="$out/solid"
     mkdir -p "$solid"
     geo="$out/geometry/foil.geo"
-    log "solid Tet10 (lc=$lc m) -> $solid"
-    gmsh "$geo" -3 -order 2 -setnumber lc "$lc" -format msh4 -o "$solid/foil-tet10.msh" \
+    tetArgs=(-setnumber lc "$lc")
+    if [ "$curved" = 1 ]; then tetArgs+=(-setnumber curved 1 -setnumber hoOpt 2); fi
+    log "solid Tet10 (lc=$lc m, curved=$curved) -> $solid"
+    gmsh "$geo" -3 -order 2 "${tetArgs[@]}" -format msh4 -o "$solid/foil-tet10.msh" \
         > "$solid/log.tet10" 2>&1 || { tail -20 "$solid/log.tet10"; die "gmsh Tet10 failed"; }
-    gmsh "$geo" -3 -order 2 -setnumber lc "$lc" -format msh22 -o "$solid/foil-tet10-msh22.msh" \
-        > "$solid/log.tet10-msh22" 2>&1 || die "gmsh Tet10 (msh22) failed"
-    log "solid Hex20 / Hex27 (chord $hexC, thickness $hexT, span $hexS, nose $hexN)"
+    gmsh "$solid/foil-tet10.msh" -save -format msh22 -o "$solid/foil-tet10-msh22.msh" \
+        > "$solid/log.tet10-msh22" 2>&1 || die "gmsh msh22 conversion failed"
+    log "solid Hex20 / Hex27 (chord $hexC, thickness $hexT, span $hexS)"
     hexArgs=(-setnumber hex 1 -setnumber nChord "$hexC" -setnumber nThick "$hexT"
-             -setnumber nSpan "$hexS" -setnumber nNose "$hexN")
+             -setnumber nSpan "$hexS")
     gmsh "$geo" -3 -order 2 "${hexArgs[@]}" -string "Mesh.SecondOrderIncomplete = 1;" \
         -format msh4 -o "$solid/foil-hex20.msh" > "$solid/log.hex20" 2>&1 || die "gmsh Hex20 failed"
     gmsh "$geo" -3 -order 2 "${hexArgs[@]}" -format msh4 -o "$solid/foil-hex27.msh" \
         > "$solid/log.hex27" 2>&1 || die "gmsh Hex27 failed"
-    for f in "$solid"/log.*; do
-        if grep -q "elements with jac. < 0" "$f"; then die "negative Jacobians in $(basename "$f")"; fi
+    for m in foil-tet10 foil-hex20 foil-hex27; do
+        r="$(jacobianRatio "$solid/$m.msh")"
+        echo "$m.msh: worst minJ/maxJ $r" | tee -a "$summary"
+        awk -v r="$r" 'BEGIN{exit !(r + 0 > 0)}' || die "$m.msh has elements with non-positive Jacobian ($r)"
     done
-    /usr/bin/python3 "$here/tools/mshinfo.py" "$solid"/foil-*.msh | tee -a "$summary"
+    /usr/bin/python3 "$here/tools/mshinfo.py" --require volume,clamped,wetted "$solid"/foil-*.msh \
+        | tee -a "$summary"
 fi
 log "done: $summary"

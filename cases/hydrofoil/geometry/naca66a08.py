@@ -281,7 +281,10 @@ def writeGeo(path, upper, lower, args):
 
     Numbers settable with `gmsh -setnumber NAME VALUE`: hex (0 Tet, 1 structured Hex),
     lc (tet size, m), edgeRatio (size at LE/TE points / lc),
-    hoOpt (Mesh.HighOrderOptimize), curved (0: straight-sided second order), nChord / nThick / nNose / nSpan (hex divisions). Physical groups:
+    curved (0, default: straight-sided second-order elements, always valid; 1: mid-nodes on the
+    curved surfaces, then use hoOpt 2 = Mesh.HighOrderOptimize to repair negative Jacobians;
+    the structured hex variant is valid only straight-sided), nChord / nThick / nSpan (hex
+    divisions along the chord, through the thickness, along the span). Physical groups:
     "volume" (3-D), "clamped" (root face), "wetted" (all other faces).
     """
     n = len(upper)
@@ -296,9 +299,9 @@ def writeGeo(path, upper, lower, args):
     L.append('SetFactory("Built-in");')
     L.append("DefineConstant[ hex = {0, Name \"hex\"}, lc = {%g, Name \"lc\"}," % (args.chord / 12))
     L.append("  nChord = {40, Name \"nChord\"}, nThick = {6, Name \"nThick\"},")
-    L.append("  nNose = {12, Name \"nNose\"}, nSpan = {20, Name \"nSpan\"},")
-    L.append("  edgeRatio = {0.25, Name \"edgeRatio\"}, hoOpt = {2, Name \"hoOpt\"},")
-    L.append("  curved = {1, Name \"curved\"} ];")
+    L.append("  nSpan = {20, Name \"nSpan\"},")
+    L.append("  edgeRatio = {0.25, Name \"edgeRatio\"}, hoOpt = {0, Name \"hoOpt\"},")
+    L.append("  curved = {0, Name \"curved\"} ];")
     L.append("lcEdge = edgeRatio * lc; // size at the leading and trailing edge points")
     L.append("span = %.12g;" % args.span)
     # points: upper 0..n-1 ids 1..n ; lower 1..n-1 ids n+1..2n-1 (LE shared)
@@ -344,8 +347,8 @@ def writeGeo(path, upper, lower, args):
     L.append('Physical Surface("clamped") = {1};')
     L.append('Physical Surface("wetted") = {ex[0], ex[{2 : #ex[]-1}]};')
     L.append("Mesh.ElementOrder = 2;")
-    L.append("Mesh.HighOrderOptimize = hoOpt; // 2: optimise curved Tet10 (no negative Jacobians)")
-    L.append("Mesh.SecondOrderLinear = 1 - curved; // curved 0: straight-sided second-order")
+    L.append("Mesh.SecondOrderLinear = 1 - curved; // curved 0: straight-sided second order")
+    L.append("Mesh.HighOrderOptimize = hoOpt;      // 2: optimise curved elements")
     with open(path, "w") as f:
         f.write("\n".join(L) + "\n")
 
