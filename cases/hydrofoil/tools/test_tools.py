@@ -1,0 +1,93 @@
+#!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Checks of tools/forceConvergence.py and tools/mshinfo.py on small synthetic inputs."""
+import io
+import os
+import sys
+import tempfile
+import unittest
+from contextlib import redirect_stdout
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import forceConvergence as fc  # noqa: E402
+import mshinfo  # noqa: E402
+
+
+class ForceConvergence(unittest.TestCase):
+    def test_criterion(self):
+        it = np.arange(1, 201, dtype=float)
+        # Fx, Fy decay to (0.3, -2.0) like exp(-i/10); Fz ~ 0 with tiny noise
+        f = np.column_stack([0.3 + 0.5 * np.exp(-it / 10), -2.0 + 3 * np.exp(-it / 10),
+                             1e-6 * np.sin(it)])
+        n = fc.convergedAt(it, f, 20, 1e-3)
+        # Fx: 0.5 e^{-(n-20)/10} (1 - e^{-2}) <= 3e-4 -> n - 20 >= 10 ln(0.5*0.8647/3e-4)
+        nx = 20 + 10 * np.log(0.5 * (1 - np.exp(-2.0)) / 3e-4)
+        ny = 20 + 10 * np.log(3 * (1 - np.exp(-2.0)) / 2e-3)
+        self.assertEqual(int(it[n]), int(np.ceil(max(nx, ny))))
+        self.assertIsNone(fc.convergedAt(it[:50], f[:50], 20, 1e-3))
+
+    def test_reads_force_dat(self):
+        with tempfile.TemporaryDirectory() as case:
+            d = os.path.join(case, "postProcessing", "forces", "0")
+            os.makedirs(d)
+            with open(os.path.join(d, "force.dat"), "w") as fh:
+                fh.write("# Force\n# Time total_x total_y total_z pressure_x ...\n")
+                for i in range(1, 61):
+                    fh.write(f"{i}\t(0.3 -2 0.01)\t(0.2 -2 0.01)\t(0.1 0 0)\n")
+            it, tot, pres, visc = fc.readForces(case)
+            self.assertEqual(len(it), 60)
+            self.assertEqual(tuple(tot[-1]), (0.3, -2.0, 0.01))
+            self.assertEqual(tuple(visc[0]), (0.1, 0.0, 0.0))
+            buf = io.StringIO()
+            with redirect_stdout(buf):
+                fc.main([case])
+            self.assertIn("converged_at=21", buf.getvalue())
+
+
+MSH22 = """$MeshFormat
+2.2 0 8
+$EndMeshFormat
+$PhysicalNames
+2
+2 2 "clamped"
+3 1 "volume"
+$EndPhysicalNames
+$Nodes
+4
+1 0 0 0
+2 1 0 0
+3 0 1 0
+4 0 0 1
+$EndNodes
+$Elements
+2
+1 2 2 2 1 1 2 3
+2 4 2 1 1 1 2 3 4
+$EndElements
+"""
+
+
+class MshInfo(unittest.TestCase):
+    def test_msh22(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            p = os.path.join(tmp, "t.msh")
+            with open(p, "w") as fh:
+                fh.write(MSH22)
+            version, nNodes, byType, byGroup = mshinfo.summarise(p)
+            self.assertEqual((version, nNodes), ("2.2", 4))
+            self.assertEqual(byGroup["volume"][4], 1)
+            self.assertEqual(byGroup["clamped"][2], 1)
+            with redirect_stdout(io.StringIO()):
+                self.assertEqual(mshinfo.main(["--require", "volume,clamped", p]), 0)
+                with open(os.devnull, "w") as null:
+                    stderr, sys.stderr = sys.stderr, null
+                    try:
+                        self.assertEqual(mshinfo.main(["--require", "wetted", p]), 1)
+                    finally:
+                        sys.stderr = stderr
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=2)
