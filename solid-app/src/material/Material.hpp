@@ -85,8 +85,9 @@ std::unique_ptr<Material> makeMaterial(const MaterialParameters& params, Kinemat
 
 // Isotropic elastic Voigt matrix (engineering shear): K II + 2G (I - II/3).
 Matrix6 isotropicTangent(double bulkModulus, double shearModulus);
-// Deviatoric projector acting on engineering-shear strain, giving tensor-shear deviatoric
-// strain times 2:  2G * deviatoricProjector() * strain = 2G dev(eps) as stress vector.
+// Deviatoric projector from an engineering-shear strain vector to dev(eps) in tensor
+// components (shear entries gamma/2), so 2G * deviatoricProjector() * strain = 2G dev(eps)
+// as a stress vector; also the (I - II/3) of eq. 9 in this Voigt pair.
 Matrix6 deviatoricProjector();
 // Trace of a Voigt tensor (strain or stress): v0 + v1 + v2.
 inline double trace(const Vector6& v)
