@@ -50,8 +50,6 @@ bool isCoupledConfig(const std::string& configFile)
     return config::Block::load(configFile).has("coupling");
 }
 
-namespace {
-
 fe::ProblemDefinition problemFromConfig(const config::SolidConfig& c)
 {
     fe::ProblemDefinition p;
@@ -89,8 +87,6 @@ std::vector<std::string> surfacesOf(const config::SolidConfig& c)
         s.push_back(f.surface);
     return s;
 }
-
-} // namespace
 
 int runStandalone(const RunOptions& options)
 {

@@ -2,7 +2,14 @@
 // solid-app's standalone mode: a structural problem under the prescribed load/time history
 // of the config (no fluid). Collective on MPI_COMM_WORLD; rank 0 prints and writes.
 #pragma once
+#include "fe/StructuralSolver.hpp"
+
 #include <string>
+#include <vector>
+
+namespace fsi::config {
+struct SolidConfig;
+}
 
 namespace fsi::app {
 
@@ -17,6 +24,12 @@ RunOptions parseArguments(int argc, char** argv);
 
 // True if the config has a top-level `coupling:` block (the driver's coupled mode).
 bool isCoupledConfig(const std::string& configFile);
+
+// The structural problem (constraints, loads, Newton settings) of a config; shared with the
+// coupled mode so both build the solid the same way.
+fe::ProblemDefinition problemFromConfig(const config::SolidConfig& config);
+// Every surface group the config names (clamped, wetted, loaded): they must exist in the mesh.
+std::vector<std::string> surfacesOf(const config::SolidConfig& config);
 
 // Runs the standalone problem. Returns the exit code (0 ok, 2 a level did not converge);
 // throws std::runtime_error (one line) on bad input.

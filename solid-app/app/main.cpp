@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// solid-app CONFIG.yaml [--out DIR]
+// solid-app CONFIG.yaml [--out DIR] [--launch mpmd|port] [--port-file F] [--comm-timeout S]
 #include "Standalone.hpp"
 
 #include <mpi.h>
@@ -17,6 +17,9 @@ int main(int argc, char** argv)
     int rank = 0, code = 0;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     try {
+#ifdef FSI_HAVE_DRIVER
+        fsi::driver::takeLaunchFlags(argc, argv); // --launch, --port-file, --comm-timeout
+#endif
         const auto options = fsi::app::parseArguments(argc, argv);
         if (fsi::app::isCoupledConfig(options.configFile)) {
 #ifdef FSI_HAVE_DRIVER

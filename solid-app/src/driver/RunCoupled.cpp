@@ -1,0 +1,133 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "driver/RunCoupled.hpp"
+
+#include "Standalone.hpp"
+#include "config/SolidConfig.hpp"
+#include "config/YamlReader.hpp"
+#include "driver/CommFluidPeer.hpp"
+#include "driver/CoupledDriver.hpp"
+#include "fsi/comm/Errors.hpp"
+#include "fsi/comm/LaunchOptions.hpp"
+#include "io/AtomicFile.hpp"
+#include "io/VtuWriter.hpp"
+#include "material/Material.hpp"
+#include "mesh/Mesh.hpp"
+
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <optional>
+
+namespace fsi::driver
+{
+
+namespace
+{
+namespace fs = std::filesystem;
+
+std::optional<comm::LaunchOptions> flagLaunch; // set when a launch flag was given
+
+comm::LaunchOptions launchFrom(const LaunchParameters& p)
+{
+    comm::LaunchOptions o;
+    o.mode = p.mode == "port" ? comm::LaunchMode::Port : comm::LaunchMode::Mpmd;
+    o.portFile = p.portFile;
+    o.timeoutSeconds = p.timeout;
+    return o;
+}
+} // namespace
+
+void takeLaunchFlags(int& argc, char** argv)
+{
+    bool given = false;
+    for (int i = 1; i < argc; ++i)
+        for (const char* flag : {"--launch", "--port-file", "--comm-timeout"})
+            if (std::strncmp(argv[i], flag, std::strlen(flag)) == 0)
+                given = true;
+    auto options = comm::parseLaunchOptions(argc, argv);
+    if (given)
+        flagLaunch = options;
+}
+
+int runCoupled(const std::string& configFile, const std::string& outputFolder)
+{
+    std::optional<comm::Channel> channel;
+    try
+    {
+        const config::SolidConfig cfg = config::SolidConfig::load(configFile);
+        const CouplingParameters params =
+            CouplingParameters::parse(config::Block::load(configFile).block("coupling"));
+        if (cfg.mesh.wetted.empty())
+            throw std::runtime_error(configFile + ": solid.mesh.wetted is required in a coupled run "
+                                                  "(the interface surface group)");
+        const comm::LaunchOptions launch = flagLaunch ? *flagLaunch : launchFrom(params.launch);
+
+        // The mesh first (no MPI): the handshake announces the wetted node count.
+        const mesh::Mesh mesh = mesh::readGmsh(cfg.mesh.file, {cfg.mesh.volume, app::surfacesOf(cfg)}, true);
+        const long wettedNodes = static_cast<long>(mesh.surface(cfg.mesh.wetted).nodes.size());
+        channel.emplace(comm::Channel::open(launch, {comm::Role::Solid, "solid-app", {wettedNodes}},
+                                            {"fluid-app", 0, {}}));
+        const MPI_Comm comm = channel->localComm();
+        const bool root = channel->isRoot();
+        const std::string out = outputFolder.empty() ? cfg.output.folder : outputFolder;
+        if (root)
+        {
+            fs::create_directories(out);
+            const std::string echo = cfg.echo() + params.echo();
+            std::printf("%s", echo.c_str());
+            io::writeFileAtomically((fs::path(out) / "config.echo.yaml").string(), echo);
+            std::printf("solid-app: coupled with %s; %d nodes, %d cells, %ld wetted nodes, %d rank(s)\n",
+                        channel->peerName().c_str(), mesh.numNodes(), mesh.cells.size(), wettedNodes,
+                        channel->localSize());
+            std::printf("%s\n", cfg.material.describe().c_str());
+        }
+        const auto law = material::makeMaterial(cfg.material, cfg.kinematics);
+        fe::StructuralSolver solid(comm, mesh, *law, app::problemFromConfig(cfg));
+        CommFluidPeer fluid(*channel);
+
+        std::vector<WatchedNode> watched;
+        for (const auto& w : cfg.output.watch)
+            watched.push_back({w.name, mesh.nearestNode({w.point[0], w.point[1], w.point[2]})});
+        CoupledDriver driver(comm, solid, &fluid, params, out, cfg.material.relaxationTimes(), watched);
+
+        io::PvdSeries series((fs::path(out) / "solid.pvd").string());
+        driver.onLevelAccepted([&](const LevelRecord& r) {
+            if (!cfg.output.vtu || (r.level % cfg.output.every) != 0)
+                return;
+            std::vector<material::Vector6> nodal, cells;
+            solid.cauchyStress(nodal, cells);
+            if (!root)
+                return;
+            char name[64];
+            std::snprintf(name, sizeof name, "solid_%05d.vtu", r.level);
+            io::writeVtu((fs::path(out) / name).string(), mesh, {&solid.displacement(), &nodal, &cells},
+                         cfg.output.binary);
+            series.add(r.time, name);
+            series.write();
+        });
+        const RunSummary s = driver.run();
+        if (root)
+        {
+            char row[512];
+            std::snprintf(row, sizeof row,
+                          "levels,coupling_iterations,fluid_iterations,factorizations,wall_s,fluid_s,"
+                          "solid_s,mapping_s\n%d,%d,%d,%d,%.3f,%.3f,%.3f,%.3f\n",
+                          s.levels, s.couplingIterations, s.fluidIterations, s.factorizations,
+                          s.wallSeconds, s.fluidSeconds, s.solidSeconds, s.mappingSeconds);
+            io::writeFileAtomically((fs::path(out) / "summary.csv").string(), row);
+            std::printf("solid-app: done, %d levels, %d coupling iterations, %d fluid iterations, "
+                        "%d factorizations; wall %.1f s (fluid %.1f, solid %.1f, mapping %.2f); "
+                        "output in %s\n",
+                        s.levels, s.couplingIterations, s.fluidIterations, s.factorizations,
+                        s.wallSeconds, s.fluidSeconds, s.solidSeconds, s.mappingSeconds, out.c_str());
+        }
+        channel->close();
+        return 0;
+    }
+    catch (const std::exception& e)
+    {
+        comm::exitOnError(e, channel ? &*channel : nullptr, comm::ErrorScope::AllRanks);
+    }
+}
+
+} // namespace fsi::driver

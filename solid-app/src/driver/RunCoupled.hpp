@@ -1,0 +1,26 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// solid-app's coupled mode: a config with a `coupling:` block. solid-app is the driver: it
+// opens the channel to fluid-app (port server or MPMD), runs the quasi-steady loop and writes
+//   OUT/config.echo.yaml      the resolved solid + coupling configuration
+//   OUT/coupling.csv          one row per coupling iteration
+//   OUT/history.csv           one row per accepted level (forces, watched points, angle)
+//   OUT/summary.csv           totals of the run (levels, iterations, wall time split)
+//   OUT/interface/level_*.csv wetted-node positions, displacements and forces per level
+//   OUT/solid_*.vtu + solid.pvd  structural fields per level for ParaView
+#pragma once
+
+#include <string>
+
+namespace fsi::driver
+{
+
+// Removes --launch, --port-file and --comm-timeout from argc/argv and keeps them: they override
+// the config's coupling.launch block. Call first in main, before other argument parsing.
+void takeLaunchFlags(int& argc, char** argv);
+
+// Runs the coupled case; collective over this program's ranks. Returns the exit code; errors
+// end the run through fsi::comm (the fluid is told why) with a one-line message.
+int runCoupled(const std::string& configFile, const std::string& outputFolder);
+
+} // namespace fsi::driver
