@@ -1,0 +1,38 @@
+#!/bin/bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# Mesh-motion check: impose a bending + twist on the foil patch (tools/foilMotion.py), move the
+# mesh once with the case's dynamicMeshDict (displacementLaplacian, quadratic inverseDistance)
+# using stock moveDynamicMesh, and run checkMesh on the moved mesh.
+#
+#   tools/motionCheck.sh --mesh DIR/fluid --out RUNDIR [--tip-twist-deg -4] [--tip-deflection 0.003]
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+mesh="" out="" twist=-4 deflection=0.003
+while [ $# -gt 0 ]; do
+    case "$1" in
+        --mesh) mesh="$2"; shift 2 ;;
+        --out) out="$2"; shift 2 ;;
+        --tip-twist-deg) twist="$2"; shift 2 ;;
+        --tip-deflection) deflection="$2"; shift 2 ;;
+        *) echo "error: motionCheck.sh: unknown option '$1'" >&2; exit 1 ;;
+    esac
+done
+[ -f "$mesh/constant/polyMesh/owner" ] || { echo "error: motionCheck.sh: --mesh '$mesh' has no mesh" >&2; exit 1; }
+export WM_PROJECT_DIR="${WM_PROJECT_DIR:-/usr/share/openfoam}"
+rm -rf "$out"; mkdir -p "$out"
+cp -r "$mesh/0" "$mesh/constant" "$mesh/system" "$out/"
+cd "$out"
+foamDictionary system/controlDict -entry endTime -set 1 > /dev/null
+foamDictionary system/controlDict -entry writeInterval -set 1 > /dev/null
+foamDictionary system/controlDict -entry writeFormat -set ascii > /dev/null
+foamDictionary system/controlDict -entry functions -remove > /dev/null
+foamFormatConvert -constant > log.foamFormatConvert 2>&1
+/usr/bin/python3 "$here/foilMotion.py" . --tip-twist-deg "$twist" --tip-deflection "$deflection"
+moveDynamicMesh > log.moveDynamicMesh 2>&1
+checkMesh -latestTime > log.checkMesh 2>&1 || true
+if grep -q "^Mesh OK" log.checkMesh; then
+    echo "motion twist=$twist deg deflection=$deflection m: Mesh OK"
+else
+    echo "motion twist=$twist deg deflection=$deflection m: FAILED: $(grep '\*\*\*' log.checkMesh | head -3 | tr -s ' ')"
+    exit 1
+fi
