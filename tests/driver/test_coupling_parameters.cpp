@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The `coupling` block: the shipped example parses; bad input gives one-line errors naming
+// the file and the key.
+#include "config/YamlReader.hpp"
+#include "driver/CouplingParameters.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+
+using namespace fsi;
+
+namespace
+{
+std::string writeTemp(const std::string& text)
+{
+    static int counter = 0;
+    const std::string file = "/tmp/fsi-coupling-" + std::to_string(::getpid()) + "-" +
+                             std::to_string(counter++) + ".yaml";
+    std::ofstream(file) << text;
+    return file;
+}
+
+driver::CouplingParameters parseText(const std::string& coupling)
+{
+    const auto file = writeTemp("coupling:\n" + coupling);
+    auto p = driver::CouplingParameters::parse(config::Block::load(file).block("coupling"));
+    std::remove(file.c_str());
+    return p;
+}
+
+std::string errorOf(const std::string& coupling)
+{
+    try
+    {
+        parseText(coupling);
+    }
+    catch (const std::runtime_error& e)
+    {
+        return e.what();
+    }
+    return "no error";
+}
+
+const std::string minimal = "  convergence: {absolute_tolerance: 1.0e-7}\n"
+                            "  acceleration: {type: aitken, aitken: {initial_relaxation: 0.5}}\n"
+                            "  mapping: {type: nearest-neighbour}\n";
+} // namespace
+
+TEST(CouplingParameters, ShippedExampleParses)
+{
+    const auto p = driver::CouplingParameters::parse(
+        config::Block::load(FSI_SOURCE_DIR "/config/coupled.example.yaml").block("coupling"));
+    EXPECT_EQ(p.acceleration.type, "aitken");
+    EXPECT_DOUBLE_EQ(p.acceleration.aitken.initialRelaxation, 0.5);
+    EXPECT_EQ(p.mapping.type, "rbf-wendland-c2");
+    EXPECT_DOUBLE_EQ(p.mapping.wendland.supportRadius, 0.004);
+    EXPECT_EQ(p.time.type, "adaptive");
+    EXPECT_DOUBLE_EQ(p.time.end, 3600.0);
+    ASSERT_TRUE(p.sectionAngle.has_value());
+    EXPECT_DOUBLE_EQ(p.sectionAngle->liftDirection[1], -1.0);
+    EXPECT_NE(p.echo().find("rbf-wendland-c2: {support_radius: 0.004}"), std::string::npos);
+}
+
+TEST(CouplingParameters, MinimalBlockHasSteadyDefaults)
+{
+    const auto p = parseText(minimal);
+    EXPECT_EQ(p.time.type, "steady");
+    EXPECT_EQ(p.maxIterations, 30);
+    EXPECT_FALSE(p.continueOnMaxIterations);
+    EXPECT_EQ(p.launch.mode, "mpmd");
+}
+
+TEST(CouplingParameters, BadInputNamesTheKey)
+{
+    EXPECT_NE(errorOf(minimal + "  max_iteration: 3\n").find("unknown key 'max_iteration'"),
+              std::string::npos);
+    EXPECT_NE(errorOf(minimal + "  max_iterations: 0\n").find("max_iterations"), std::string::npos);
+    // Coefficients of a strategy that is not selected.
+    const std::string nnWithRbf = "  convergence: {absolute_tolerance: 1.0e-7}\n"
+                                  "  acceleration: {type: aitken, aitken: {initial_relaxation: 0.5}}\n"
+                                  "  mapping: {type: nearest-neighbour, rbf-wendland-c2: {support_radius: 1}}\n";
+    EXPECT_NE(errorOf(nnWithRbf).find("remove the block or change type"), std::string::npos);
+    // Aitken without its required omega_0.
+    const std::string noOmega = "  convergence: {absolute_tolerance: 1.0e-7}\n"
+                                "  acceleration: {type: aitken, aitken: {}}\n"
+                                "  mapping: {type: nearest-neighbour}\n";
+    EXPECT_NE(errorOf(noOmega).find("initial_relaxation"), std::string::npos);
+    // No tolerance at all.
+    const std::string noTolerance = "  convergence: {}\n"
+                                    "  acceleration: {type: aitken, aitken: {initial_relaxation: 0.5}}\n"
+                                    "  mapping: {type: nearest-neighbour}\n";
+    EXPECT_NE(errorOf(noTolerance).find("coupling.convergence"), std::string::npos);
+    // Time list not starting at 0.
+    EXPECT_NE(errorOf(minimal + "  time: {type: list, times: [1, 2]}\n").find("coupling.time.times"),
+              std::string::npos);
+    // Negative timeout.
+    EXPECT_NE(errorOf(minimal + "  launch: {timeout: -1}\n").find("timeout"), std::string::npos);
+}
