@@ -1,0 +1,201 @@
+#!/usr/bin/python3
+"""Plots and summary of a hydrofoil run (the paper's figures 5 and 6, and the tip AOA).
+
+usage: plot_hydrofoil.py RESULTS [--span-axis 2 --lift-axis 1 --chord-axis 0]
+
+RESULTS holds
+  history.csv              viscoelastic run, one row per accepted level (solid-app's history)
+  visco/interface/level_*.csv   wetted-node positions and displacements per level
+  baseline/history.csv     elastic baseline with the instantaneous modulus (optional)
+  baseline/interface/level_0000.csv
+Writes RESULTS/tip_sections.png, forces.png, tip_aoa.png and summary.csv.
+Conventions (cases/hydrofoil/README.md): x flow, y across the tunnel, lift = -F_y, z span.
+"""
+import argparse
+import csv
+import glob
+import math
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        lines = [ln for ln in f if not ln.startswith("#")]
+    rows = list(csv.DictReader(lines))
+    return rows
+
+
+def column(rows, name):
+    return [float(r[name]) for r in rows]
+
+
+def interface_levels(folder):
+    """{level: (time, rows)} of interface/level_*.csv."""
+    out = {}
+    for path in sorted(glob.glob(os.path.join(folder, "interface", "level_*.csv"))):
+        with open(path) as f:
+            header = f.readline()  # "# level N time T s"
+        parts = header.split()
+        level, time = int(parts[2]), float(parts[4])
+        out[level] = (time, read_csv(path))
+    return out
+
+
+def tip_section(rows, span_axis, fraction=0.03):
+    """Nodes within `fraction` of the span of the tip (largest span coordinate)."""
+    keys = "xyz"
+    s = [float(r[keys[span_axis]]) for r in rows]
+    smin, smax = min(s), max(s)
+    tol = fraction * (smax - smin)
+    return [r for r, v in zip(rows, s) if v >= smax - tol]
+
+
+def zero_crossing(times, values):
+    """First time where values changes sign (linear interpolation), or None."""
+    for i in range(1, len(values)):
+        if values[i - 1] == 0.0:
+            return times[i - 1]
+        if values[i - 1] * values[i] < 0.0:
+            t0, t1, v0, v1 = times[i - 1], times[i], values[i - 1], values[i]
+            return t0 + (t1 - t0) * v0 / (v0 - v1)
+    return None
+
+
+def interpolate(times, values, t):
+    if not times or t < times[0] or t > times[-1]:
+        return None
+    for i in range(1, len(times)):
+        if times[i] >= t:
+            w = (t - times[i - 1]) / (times[i] - times[i - 1]) if times[i] > times[i - 1] else 0.0
+            return values[i - 1] + w * (values[i] - values[i - 1])
+    return values[-1]
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("results")
+    ap.add_argument("--span-axis", type=int, default=2)
+    ap.add_argument("--lift-axis", type=int, default=1)
+    ap.add_argument("--chord-axis", type=int, default=0)
+    ap.add_argument("--shape-times", default="0,10,50,360,3600",
+                    help="times [s] whose tip sections are drawn (nearest level)")
+    a = ap.parse_args()
+    res = a.results
+    hist_path = os.path.join(res, "history.csv")
+    if not os.path.exists(hist_path):
+        sys.exit(f"error: {hist_path} not found (run the case first)")
+    visco = read_csv(hist_path)
+    t = column(visco, "time")
+    fx, fy, fz = column(visco, "Fx"), column(visco, "Fy"), column(visco, "Fz")
+    lift = [-v for v in fy]
+    aoa_key = next((k for k in visco[0] if k.endswith("_deg")), None)
+    aoa = column(visco, aoa_key) if aoa_key else None
+    base = None
+    bpath = os.path.join(res, "baseline", "history.csv")
+    if os.path.exists(bpath):
+        base = read_csv(bpath)[-1]
+
+    keys = "xyz"
+    c, l = keys[a.chord_axis], keys[a.lift_axis]
+
+    # Figure 5: tip-section shapes.
+    fig, ax = plt.subplots(figsize=(7.5, 3.6))
+    levels = interface_levels(os.path.join(res, "visco"))
+    if levels:
+        wanted = [float(x) for x in a.shape_times.split(",")]
+        chosen = []
+        for w in wanted:
+            lv = min(levels, key=lambda k: abs(levels[k][0] - w))
+            if lv not in chosen:
+                chosen.append(lv)
+        for lv in chosen:
+            time, rows = levels[lv]
+            tip = tip_section(rows, a.span_axis)
+            ax.plot([float(r[c]) + float(r["u" + c]) for r in tip],
+                    [float(r[l]) + float(r["u" + l]) for r in tip], ".", ms=3, label=f"t = {time:g} s")
+        blevels = interface_levels(os.path.join(res, "baseline"))
+        if blevels:
+            _, rows = blevels[max(blevels)]
+            tip = tip_section(rows, a.span_axis)
+            ax.plot([float(r[c]) + float(r["u" + c]) for r in tip],
+                    [float(r[l]) + float(r["u" + l]) for r in tip], "k.", ms=1.5, label="baseline")
+        _, rows = levels[min(levels)]
+        tip = tip_section(rows, a.span_axis)
+        ax.plot([float(r[c]) for r in tip], [float(r[l]) for r in tip], ",", color="0.6",
+                label="undeformed")
+    ax.set_xlabel(f"{c} [m]")
+    ax.set_ylabel(f"{l} [m]")
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_title("Tip section (paper Fig. 5)")
+    ax.legend(fontsize=7, markerscale=3)
+    fig.tight_layout()
+    fig.savefig(os.path.join(res, "tip_sections.png"), dpi=130)
+
+    # Figure 6: net forces, baseline vs viscoelastic.
+    fig, ax = plt.subplots(figsize=(6.8, 4.2))
+    for vals, name, col in ((fx, "Fx", "C0"), (fy, "Fy", "C1"), (fz, "Fz", "C2")):
+        ax.plot(t, vals, "o-", ms=3, color=col, label=f"{name} viscoelastic")
+        if base:
+            ax.axhline(float(base[name]), color=col, ls="--", label=f"{name} baseline")
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel("force on the foil [N]")
+    ax.set_title("Net foil forces (paper Fig. 6; lift = -Fy)")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(res, "forces.png"), dpi=130)
+
+    if aoa:
+        fig, ax = plt.subplots(figsize=(6.4, 4.0))
+        ax.plot(t, aoa, "o-", ms=3, label="viscoelastic")
+        if base and aoa_key in base:
+            ax.axhline(float(base[aoa_key]), color="k", ls="--", label="baseline")
+        ax.axhline(-8.1, color="C3", ls=":", label="paper: -8.1 deg at 360 s")
+        ax.axvline(360.0, color="C3", ls=":")
+        ax.set_xlabel("t [s]")
+        ax.set_ylabel("tip AOA [deg]")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        fig.savefig(os.path.join(res, "tip_aoa.png"), dpi=130)
+
+    # Summary against the paper's landmarks.
+    rows = [("quantity", "value", "paper")]
+    zc = zero_crossing(t, lift)
+    rows.append(("lift_zero_crossing_s", "" if zc is None else f"{zc:.4g}", "about 50"))
+    if aoa:
+        a360 = interpolate(t, aoa, 360.0)
+        rows.append(("tip_aoa_360s_deg", "" if a360 is None else f"{a360:.4g}", "-8.1"))
+        rows.append(("tip_aoa_final_deg", f"{aoa[-1]:.4g}", ""))
+    rows.append(("lift_t0_N", f"{lift[0]:.4g}", ""))
+    rows.append(("lift_final_N", f"{lift[-1]:.4g}", ""))
+    rows.append(("drag_t0_N", f"{fx[0]:.4g}", ""))
+    rows.append(("drag_final_N", f"{fx[-1]:.4g}", ""))
+    if len(t) > 2:
+        # approach to steady state: relative change of the lift over the last 10 % of the time
+        tail = [v for tt, v in zip(t, lift) if tt >= 0.9 * t[-1]]
+        spread = (max(tail) - min(tail)) / max(abs(lift[-1]), 1e-12) if tail else float("nan")
+        rows.append(("lift_change_last_10pct_time", f"{spread:.3g}", "nearly steady after ~1 h"))
+    if base:
+        rows.append(("baseline_lift_N", f"{-float(base['Fy']):.4g}", ""))
+        rows.append(("baseline_drag_N", f"{float(base['Fx']):.4g}", ""))
+        if aoa_key in base:
+            rows.append(("baseline_tip_aoa_deg", f"{float(base[aoa_key]):.4g}", ""))
+    rows.append(("levels", str(len(t)), ""))
+    rows.append(("coupling_iterations", str(int(sum(column(visco, "coupling_iterations")))), ""))
+    rows.append(("fluid_iterations", str(int(sum(column(visco, "fluid_iterations")))), ""))
+    rows.append(("wall_s", f"{float(visco[-1]['wall_s']):.1f}", ""))
+    with open(os.path.join(res, "summary.csv"), "w", newline="") as f:
+        csv.writer(f).writerows(rows)
+    for r in rows[1:]:
+        print(f"  {r[0]:32s} {r[1]:>12s}   {('paper: ' + r[2]) if r[2] else ''}")
+
+
+if __name__ == "__main__":
+    main()
