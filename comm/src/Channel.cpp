@@ -354,7 +354,7 @@ void Channel::connectPort()
                                " (two mpiruns also need the same --ompi-server, see "
                                "scripts/launch-port)"
                          : std::string(),
-                kExitCommTimeout);
+                kExitCommTimeout, isRoot() ? path : std::string());
             checkMpi(MPI_Comm_accept(isRoot() ? portName : nullptr, MPI_INFO_NULL, 0, localComm_,
                                      &interComm_),
                      "MPI_Comm_accept");

@@ -8,15 +8,18 @@
 namespace fsi::comm::detail
 {
 
-Watchdog::Watchdog(double timeoutSeconds, std::string message, int exitCode)
+Watchdog::Watchdog(double timeoutSeconds, std::string message, int exitCode,
+                   std::string removeFile)
 {
     const auto limit = std::chrono::duration<double>(timeoutSeconds);
     thread_ = std::thread(
-        [this, limit, exitCode, message = std::move(message)]
+        [this, limit, exitCode, message = std::move(message), removeFile = std::move(removeFile)]
         {
             std::unique_lock<std::mutex> lock(mutex_);
             if (done_.wait_for(lock, limit, [this] { return disarmed_; }))
                 return;
+            if (!removeFile.empty())
+                ::unlink(removeFile.c_str());
             if (!message.empty())
             {
                 const std::string line = "error: " + message + "\n";
