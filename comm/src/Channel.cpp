@@ -669,9 +669,11 @@ Message Channel::receiveOnRoot(MessageKind expected, bool anyKind, double timeou
     }
     if (status != kOk)
     {
+        // After a protocol error the message stream is still in step: the channel stays usable
+        // for sending Abort. A timeout or an MPI error leaves requests pending: unusable.
         if (status == kPeerAbort)
             peerKnowsWeStop_ = true;
-        else
+        else if (status != kProtocol)
             fail();
         throwStatus(status, std::string(bytes.begin(), bytes.end()), localRank_, peerName());
     }

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "fsi/comm/Errors.hpp"
 
+#include "Watchdog.hpp"
 #include "fsi/comm/Channel.hpp"
 #include "fsi/comm/MpmdWorld.hpp"
 
@@ -64,7 +65,11 @@ void exitOnError(const std::exception& error, Channel* channel, ErrorScope scope
         else
             abortRun(code);
     }
-    finaliseMpi();
+    {
+        // MPI_Finalize may wait for the peer (MPMD: one job); never longer than the timeout.
+        detail::Watchdog guard(channel ? channel->options().timeoutSeconds : 60.0, {}, code);
+        finaliseMpi();
+    }
     std::exit(code);
 }
 
