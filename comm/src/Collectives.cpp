@@ -6,6 +6,7 @@
 #include <chrono>
 #include <climits>
 #include <numeric>
+#include <sstream>
 #include <thread>
 
 namespace fsi::comm
@@ -37,8 +38,10 @@ void waitBounded(MPI_Request& request, double timeoutSeconds, const std::string&
             return;
         if (Clock::now() >= deadline)
         {
-            throw TimeoutError("fsi::comm: " + what + " did not complete within " +
-                               std::to_string(static_cast<long>(timeoutSeconds + 0.5)) + " s");
+            std::ostringstream text;
+            text << "fsi::comm: " << what << " did not complete within " << timeoutSeconds
+                 << " s";
+            throw TimeoutError(text.str());
         }
         if (polls > 200)
         {

@@ -53,6 +53,7 @@ struct DriverFlags
     int dieAfter = -1;     // --die-after N: _exit(3) before the N-th channel operation
     bool dieBySignal = false; // --die-signal: raise SIGKILL instead of _exit(3)
     int abortAfter = -1;   // --abort-after N: send Abort instead of the N-th operation
+    int wrongKindAt = -1;  // --send-wrong-kind-at N: the N-th operation sends Accept instead
     bool handshakeOnly = false; // --handshake-only: solid sends Finish right away
     std::string expectPeerProgram = "fluid-like"; // --expect-peer-program (solid side)
     int checkWorldSize = 0; // --check-world-size N (fluid with redirect): MPI_COMM_WORLD size
@@ -99,6 +100,8 @@ inline DriverFlags parseDriverFlags(int argc, char** argv)
             f.dieBySignal = true;
         else if (a == "--abort-after")
             f.abortAfter = std::stoi(next());
+        else if (a == "--send-wrong-kind-at")
+            f.wrongKindAt = std::stoi(next());
         else if (a == "--handshake-only")
             f.handshakeOnly = true;
         else if (a == "--expect-peer-program")
@@ -122,7 +125,8 @@ class FaultInjector
 {
 public:
     FaultInjector(const DriverFlags& flags, Channel& channel) : flags_(flags), channel_(channel) {}
-    void before(const char* what)
+    // Returns true when this operation must send a wrong kind (--send-wrong-kind-at).
+    bool before(const char* what)
     {
         ++count_;
         if (count_ == flags_.dieAfter)
@@ -137,6 +141,7 @@ public:
         if (count_ == flags_.abortAfter)
             throw CollectiveTestError("test abort requested before operation " +
                                      std::to_string(count_));
+        return count_ == flags_.wrongKindAt;
     }
 
 private:

@@ -57,8 +57,9 @@ void run(const LaunchOptions& launch, const DriverFlags& flags, std::optional<Ch
                     displacement[static_cast<std::size_t>(i)] =
                         displacementValue(i, step, iteration);
             }
-            inject.before("send Solve");
-            channel.send(MessageKind::Solve, step, iteration, std::move(displacement));
+            const bool wrongKind = inject.before("send Solve");
+            channel.send(wrongKind ? MessageKind::Accept : MessageKind::Solve, step, iteration,
+                         std::move(displacement));
             inject.before("receive Forces");
             Message forces = channel.receive(MessageKind::Forces);
             require(forces.timeStep == step && forces.iteration == iteration &&
