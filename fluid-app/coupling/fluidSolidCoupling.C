@@ -530,7 +530,12 @@ Foam::vector Foam::fluidSolidCoupling::interfaceForce() const
 }
 
 
-void Foam::fluidSolidCoupling::reportForces(const word& label) const
+void Foam::fluidSolidCoupling::reportForces
+(
+    const word& label,
+    vector* totalOut,
+    vector* pressureOut
+) const
 {
     vector total(Zero), pressure(Zero);
     for (const Foam::label patchi : forcePatches_)
@@ -543,6 +548,14 @@ void Foam::fluidSolidCoupling::reportForces(const word& label) const
     Info<< "fsi: " << label << " force on " << dict_.getOrDefault<wordList>("forcePatches", wordList(1, patchName_))
         << ": total " << total << " N, pressure " << pressure
         << " N, viscous " << (total - pressure) << " N" << endl;
+    if (totalOut)
+    {
+        *totalOut = total;
+    }
+    if (pressureOut)
+    {
+        *pressureOut = pressure;
+    }
 }
 
 
@@ -586,8 +599,23 @@ int Foam::fluidSolidCoupling::runRigid(const SteadySolver& solve)
     Info<< "fsi: rigid solve: " << r.iterations << " SIMPLE iterations, residuals U "
         << r.residualU << " p " << r.residualP
         << (r.converged ? " (converged)" : " (iteration cap reached)") << endl;
-    reportForces("rigid");
+    vector total(Zero), pressure(Zero);
+    reportForces("rigid", &total, &pressure);
     checkAgainstForcesFunctionObject();
+    if (Pstream::master())
+    {
+        mkDir(mesh_.time().globalPath()/"postProcessing"/"fsi");
+        OFstream os(mesh_.time().globalPath()/"postProcessing"/"fsi"/"forces.csv");
+        os.precision(12);
+        const vector viscous(total - pressure);
+        os  << "Fx,Fy,Fz,pressureFx,pressureFy,pressureFz,viscousFx,viscousFy,viscousFz,"
+            << "simpleIterations,converged,residualU,residualP,clock_s" << nl
+            << total.x() << ',' << total.y() << ',' << total.z() << ','
+            << pressure.x() << ',' << pressure.y() << ',' << pressure.z() << ','
+            << viscous.x() << ',' << viscous.y() << ',' << viscous.z() << ','
+            << r.iterations << ',' << int(r.converged) << ',' << r.residualU << ','
+            << r.residualP << ',' << mesh_.time().elapsedClockTime() << nl;
+    }
     {
         const std::vector<double> f = gatherFaceForces(faceForces(patchi_));
         if (Pstream::master() && writeInterfaceData_)

@@ -4,7 +4,7 @@
 
 usage: fluid_test.py TEST --fluid-app EXE --case-dir DIR --work DIR
                      [--mpiexec MPIRUN] [--fake-solid EXE] [--launch-port SCRIPT]
-TEST: cfd1-coarse | force-consistency | motion-rotation | motion-bending |
+TEST: cfd1-coarse | cfd1-fine | force-consistency | motion-rotation | motion-bending |
       quality-guard | parallel-equivalence | mpmd | port | peer-abort
 Exit 0 when every assertion holds; each assertion prints its figures.
 """
@@ -134,16 +134,24 @@ def bending(p, origin, start, length, amplitude):
 
 
 # --- tests --------------------------------------------------------------------
-def t_cfd1_coarse(a):
-    d = prepare(a, "cfd1-coarse")
-    rc, log = run([a.fluid_app, "-rigid", "-case", d], os.path.join(d, "log.fluid-app"))
+def cfd1(a, level, drag_tol, lift_tol):
+    d = prepare(a, "cfd1-" + level, level=level)
+    rc, log = run([a.fluid_app, "-rigid", "-case", d], os.path.join(d, "log.fluid-app"), timeout=3600)
     check(rc == 0, "fluid-app -rigid exit code 0")
     F = total_force(log)
     drag, lift = F[0] / DEPTH, F[1] / DEPTH
     ed, el = (drag - DRAG_REF) / DRAG_REF, (lift - LIFT_REF) / LIFT_REF
-    check(abs(ed) <= 0.01, "coarse drag %.5f N/m vs %.2f: %+.3f %% (tolerance 1 %%)" % (drag, DRAG_REF, 100 * ed))
-    check(abs(el) <= 0.03, "coarse lift %.5f N/m vs %.3f: %+.3f %% (tolerance 3 %%)" % (lift, LIFT_REF, 100 * el))
+    check(abs(ed) <= drag_tol, "%s drag %.5f N/m vs %.2f: %+.3f %% (tolerance %g %%)" % (level, drag, DRAG_REF, 100 * ed, 100 * drag_tol))
+    check(abs(el) <= lift_tol, "%s lift %.5f N/m vs %.3f: %+.3f %% (tolerance %g %%)" % (level, lift, LIFT_REF, 100 * el, 100 * lift_tol))
     check("(converged)" in log, "SIMPLE reached fvSolution residualControl")
+
+
+def t_cfd1_coarse(a):
+    cfd1(a, "coarse", 0.01, 0.03)
+
+
+def t_cfd1_fine(a):
+    cfd1(a, "fine", 0.01, 0.05)   # the benchmark target
 
 
 def t_force_consistency(a):
@@ -327,7 +335,7 @@ def t_peer_abort(a):
           "fluid-app prints the peer's reason")
 
 
-TESTS = {"cfd1-coarse": t_cfd1_coarse, "force-consistency": t_force_consistency,
+TESTS = {"cfd1-coarse": t_cfd1_coarse, "cfd1-fine": t_cfd1_fine, "force-consistency": t_force_consistency,
          "motion-rotation": t_motion_rotation, "motion-bending": t_motion_bending,
          "quality-guard": t_quality_guard, "parallel-equivalence": t_parallel_equivalence,
          "mpmd": t_mpmd, "port": t_port, "peer-abort": t_peer_abort}
