@@ -1,0 +1,101 @@
+#!/bin/bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# The paper's case end to end, inside a copy of cases/hydrofoil (scripts/run makes the copy):
+#
+#   ./scripts/run cases/hydrofoil [--preset coarse|medium|fine] [options]
+#
+# Options (after the case):
+#   --material viscoelastic|baseline|both   which runs (default both: the paper's comparison)
+#   --np-fluid N --np-solid M               ranks of each program (default 1 and 1)
+#   --launch mpmd|port                      one mpirun A : B (default) or two + ompi-server
+#   --tc T --cli C                          section thickness ratio and design lift (0.12, 0.5)
+#   --end SECONDS                           last time level of the viscoelastic run (3600)
+#   --timeout SECONDS                       longest wait for the peer (default 900)
+# Writes results/: history.csv (viscoelastic, one row per level), baseline/ and visco/ (solid-app
+# outputs: coupling.csv, history.csv, interface/, solid_*.vtu + solid.pvd), summary.csv and the
+# PNG plots; the fluid fields of accepted levels are in fluid-*/ (OpenFOAM time folders).
+set -euo pipefail
+: "${FSI_ROOT:?run through ./scripts/run cases/hydrofoil (FSI_ROOT unset)}"
+source "$FSI_ROOT/scripts/env.sh"
+
+preset=coarse material=both npf=1 nps=1 launch=mpmd tc=0.12 cli=0.5 end="" timeout=900
+die() { echo "error: hydrofoil/run.sh: $*" >&2; exit 2; }
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --preset) preset=$2; shift 2 ;;
+    --material) material=$2; shift 2 ;;
+    --np-fluid) npf=$2; shift 2 ;;
+    --np-solid) nps=$2; shift 2 ;;
+    --launch) launch=$2; shift 2 ;;
+    --tc) tc=$2; shift 2 ;;
+    --cli) cli=$2; shift 2 ;;
+    --end) end=$2; shift 2 ;;
+    --timeout) timeout=$2; shift 2 ;;
+    -h|--help) sed -n '3,17p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) die "unknown option '$1' (see --help)" ;;
+  esac
+done
+case "$material" in viscoelastic|baseline|both) ;; *) die "--material must be viscoelastic, baseline or both" ;; esac
+case "$launch" in mpmd|port) ;; *) die "--launch must be mpmd or port" ;; esac
+[[ "$npf" =~ ^[1-9][0-9]*$ && "$nps" =~ ^[1-9][0-9]*$ ]] || die "--np-fluid/--np-solid must be positive integers"
+command -v fluid-app >/dev/null && command -v solid-app >/dev/null || die "fluid-app/solid-app not on PATH (build first)"
+
+run=$PWD
+log() { echo "[hydrofoil $(date +%H:%M:%S)] $*"; }
+start=$(date +%s)
+
+log "meshing (preset $preset, t/c $tc, C_Li $cli)"
+"$FSI_ROOT/cases/hydrofoil/mesh.sh" --out "$run/mesh" --preset "$preset" --tc "$tc" --cli "$cli" \
+    --np "$npf" > "$run/log.mesh" 2>&1 || { tail -n 20 "$run/log.mesh" >&2; die "meshing failed (log.mesh)"; }
+grep -E "^fluid:|^solid" "$run/mesh/mesh-summary.txt" 2>/dev/null | sed 's/^/  /' || true
+solidMesh=$run/mesh/solid/foil-tet10.msh
+[ -f "$solidMesh" ] || die "no structural mesh $solidMesh"
+
+runs=()
+case "$material" in both) runs=(baseline viscoelastic) ;; *) runs=("$material") ;; esac
+mkdir -p "$run/results"
+
+for m in "${runs[@]}"; do
+  short=$m; [ "$m" = viscoelastic ] && short=visco
+  fluid=$run/fluid-$short
+  rm -rf "$fluid"
+  cp -r "$run/mesh/fluid" "$fluid"
+  rm -rf "$fluid"/processor*
+  cp "$run/fluid/system/fsiDict" "$fluid/system/fsiDict"
+  parallel=""
+  if [ "$npf" -gt 1 ]; then
+    foamDictionary "$fluid/system/decomposeParDict" -entry numberOfSubdomains -set "$npf" >/dev/null
+    foamDictionary "$fluid/system/decomposeParDict" -entry method -set hierarchical >/dev/null
+    (cd "$fluid" && decomposePar -force > log.decomposePar 2>&1) || die "decomposePar failed ($fluid/log.decomposePar)"
+    parallel=-parallel
+  fi
+  cfg=$run/$m.yaml
+  sed "s|@MESH@|$solidMesh|" "$run/solid/$m.yaml" > "$cfg"
+  if [ -n "$end" ] && [ "$m" = viscoelastic ]; then
+    sed -i "s|^    end: .*|    end: $end|; s|^    hit: .*|    hit: []|" "$cfg"
+  fi
+  out=$run/results/$short
+  log "$m: fluid $npf rank(s), solid $nps rank(s), launch $launch; log in log.$short"
+  fluidCmd=(fluid-app -case "$fluid" $parallel --launch "$launch" --comm-timeout "$timeout")
+  solidCmd=(solid-app "$cfg" --out "$out" --launch "$launch" --comm-timeout "$timeout")
+  if [ "$launch" = port ]; then
+    fluidCmd+=(--port-file "$run/fsi-$short.port"); solidCmd+=(--port-file "$run/fsi-$short.port")
+    cmd=("$FSI_ROOT/scripts/launch-port" -np "$npf" "${fluidCmd[@]}" : -np "$nps" "${solidCmd[@]}")
+  else
+    cmd=(mpirun --oversubscribe -np "$npf" "${fluidCmd[@]}" : -np "$nps" "${solidCmd[@]}")
+  fi
+  set +e
+  "${cmd[@]}" 2>&1 | tee "$run/log.$short" | grep --line-buffered -E "^\[level|^error|WARNING|^solid-app: done" 
+  rc=${PIPESTATUS[0]}
+  set -e
+  [ "$rc" -eq 0 ] || die "$m run failed (exit $rc); see $run/log.$short"
+done
+
+if [ -d "$run/results/visco" ]; then
+  cp "$run/results/visco/history.csv" "$run/results/history.csv"
+elif [ -d "$run/results/baseline" ]; then
+  cp "$run/results/baseline/history.csv" "$run/results/history.csv"
+fi
+log "plots and summary"
+"$FSI_PYTHON" "$FSI_ROOT/scripts/plot_hydrofoil.py" "$run/results"
+log "done in $(( $(date +%s) - start )) s: $run/results (history.csv, summary.csv, *.png)"
