@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
@@ -333,22 +334,54 @@ bool StructuralSolver::newton(const std::vector<double>& fext, double factor, st
                 if (equation_[dof] >= 0)
                     du[equation_[dof]] = R[dof];
         linear_->solveSummedRhs(du);
-        // line search on ||R||
+        // line search (energy form, Crisfield): find alpha with s(alpha) = du . R(u + alpha du)
+        // small against s(0) = du . R(u) > 0; the residual NORM may grow on a good Newton step
+        // (e.g. membrane forces of a bending predictor), so it is not the acceptance test.
+        auto directional = [&]() {
+            double s = 0.0;
+            for (int dof = 0; dof < numDofs(); ++dof)
+                if (equation_[dof] >= 0)
+                    s += du[equation_[dof]] * R[dof];
+            return s;
+        };
+        const double s0 = directional();
         double alpha = 1.0, trialNorm = 0.0, trialRef = ref;
-        bool accepted = false;
-        for (int cut = 0; cut <= (nw.lineSearch ? 4 : 0); ++cut, alpha *= 0.5) {
+        auto tryStep = [&](double a) {
             trial = u;
             for (int dof = 0; dof < numDofs(); ++dof)
                 if (equation_[dof] >= 0)
-                    trial[dof] += alpha * du[equation_[dof]];
-            const bool admissible = residual(trial, false, trialNorm, trialRef);
-            if (admissible && (!nw.lineSearch || trialNorm < norm || trialNorm <= nw.absoluteTolerance)) {
-                accepted = true;
-                break;
+                    trial[dof] += a * du[equation_[dof]];
+            trialRef = ref;
+            return residual(trial, false, trialNorm, trialRef);
+        };
+        bool admissible = tryStep(alpha);
+        for (int cut = 0; !admissible && cut < 8; ++cut)   // inadmissible (det F <= 0, NaN): halve
+            admissible = tryStep(alpha *= 0.5);
+        if (!admissible) {
+            report.message = "Newton stalled: every step along the Newton direction is inadmissible";
+            return false;
+        }
+        if (nw.lineSearch && s0 > 0.0) {
+            double sAlpha = directional();
+            for (int k = 0; k < 5 && std::abs(sAlpha) > 0.5 * s0; ++k) {
+                // secant for the zero of s(alpha) through (0, s0) and (alpha, s(alpha))
+                double next = s0 - sAlpha > 0.0 ? alpha * s0 / (s0 - sAlpha) : 1.0;
+                next = std::clamp(next, 0.1 * alpha, 1.0);
+                if (std::abs(next - alpha) < 1e-3)
+                    break;
+                alpha = next;
+                if (!tryStep(alpha))
+                    break;
+                sAlpha = directional();
+            }
+            if (!std::isfinite(trialNorm) && !tryStep(alpha = 0.1)) {
+                report.message = "Newton stalled: no admissible line-search step";
+                return false;
             }
         }
-        if (!accepted) {
-            report.message = "Newton stalled: no decrease of the residual along the Newton direction";
+        // divergence guard: a residual exploding by orders of magnitude is not progress
+        if (trialNorm > 1e8 * std::max(norm, nw.absoluteTolerance) && trialNorm > ref) {
+            report.message = "Newton diverged: residual " + std::to_string(trialNorm) + " N";
             return false;
         }
         u.swap(trial);
