@@ -121,19 +121,21 @@ if [ "$doFluid" = 1 ]; then
 fi
 
 # ---- solid ---------------------------------------------------------------------------------
-# minimum of minJ/maxJ over the 3-D elements (Gmsh plugin AnalyseMeshQuality)
-jacobianRatio() {
+# worst minJ/maxJ and worst inverse condition number (ICN, a shape measure, 1 = regular) of
+# the 3-D elements, from the Gmsh plugin AnalyseMeshQuality: prints "JRATIO ICN"
+elementQuality() {
     local q; q="$(mktemp --suffix=.geo)"
     cat > "$q" <<EOF
 Merge "$1";
 Plugin(AnalyseMeshQuality).JacobianDeterminant = 1;
 Plugin(AnalyseMeshQuality).IGEMeasure = 0;
-Plugin(AnalyseMeshQuality).ICNMeasure = 0;
+Plugin(AnalyseMeshQuality).ICNMeasure = 1;
 Plugin(AnalyseMeshQuality).DimensionOfElements = 3;
 Plugin(AnalyseMeshQuality).CreateView = 0;
 Plugin(AnalyseMeshQuality).Run;
 EOF
-    gmsh "$q" -0 -o /dev/null 2>&1 | awk '/minJ\/maxJ/{sub(",", "", $5); print $5; exit}'
+    gmsh "$q" -0 -o /dev/null 2>&1 | awk '/minJ\/maxJ/{sub(",", "", $5); j = $5}
+        /ICN       =/{sub(",", "", $5); c = $5} END{print j, c}'
     rm -f "$q"
 }
 if [ "$doSolid" = 1 ]; then
@@ -155,8 +157,8 @@ if [ "$doSolid" = 1 ]; then
     gmsh "$geo" -3 -order 2 "${hexArgs[@]}" -format msh4 -o "$solid/foil-hex27.msh" \
         > "$solid/log.hex27" 2>&1 || die "gmsh Hex27 failed"
     for m in foil-tet10 foil-hex20 foil-hex27; do
-        r="$(jacobianRatio "$solid/$m.msh")"
-        echo "$m.msh: worst minJ/maxJ $r" | tee -a "$summary"
+        read -r r icn <<< "$(elementQuality "$solid/$m.msh")"
+        echo "$m.msh: worst minJ/maxJ $r, worst ICN $icn" | tee -a "$summary"
         awk -v r="$r" 'BEGIN{exit !(r + 0 > 0)}' || die "$m.msh has elements with non-positive Jacobian ($r)"
     done
     /usr/bin/python3 "$here/tools/mshinfo.py" --require volume,clamped,wetted "$solid"/foil-*.msh \
