@@ -19,7 +19,9 @@
 #include <string>
 #include <vector>
 
-namespace fsi::comm
+namespace fsi
+{
+namespace comm
 {
 
 // Solid = driver and port-mode server; Fluid = port-mode client.
@@ -140,4 +142,5 @@ private:
     bool peerKnowsWeStop_ = false;
 };
 
-} // namespace fsi::comm
+} // namespace comm
+} // namespace fsi

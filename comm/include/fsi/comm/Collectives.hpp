@@ -10,7 +10,9 @@
 #include <string>
 #include <vector>
 
-namespace fsi::comm
+namespace fsi
+{
+namespace comm
 {
 
 // Root returns the concatenation of every rank's local part; other ranks return {}.
@@ -35,4 +37,5 @@ void waitBounded(MPI_Request& request, double timeoutSeconds, const std::string&
 // MPI return code -> CommError("<what>: <MPI error string>") unless MPI_SUCCESS.
 void checkMpi(int code, const std::string& what);
 
-} // namespace fsi::comm
+} // namespace comm
+} // namespace fsi

@@ -5,7 +5,9 @@
 #include <stdexcept>
 #include <string>
 
-namespace fsi::comm
+namespace fsi
+{
+namespace comm
 {
 
 class Channel;
@@ -85,4 +87,5 @@ enum class ErrorScope
 // running, otherwise std::_Exit. Never returns.
 [[noreturn]] void abortRun(int exitCode);
 
-} // namespace fsi::comm
+} // namespace comm
+} // namespace fsi

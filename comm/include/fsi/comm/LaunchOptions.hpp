@@ -5,7 +5,9 @@
 #include <string>
 #include <vector>
 
-namespace fsi::comm
+namespace fsi
+{
+namespace comm
 {
 
 enum class LaunchMode
@@ -41,4 +43,5 @@ LaunchOptions parseLaunchOptions(int& argc, char** argv);
 // One line for --help texts.
 std::string launchOptionsUsage();
 
-} // namespace fsi::comm
+} // namespace comm
+} // namespace fsi

@@ -7,7 +7,9 @@
 #include <string>
 #include <vector>
 
-namespace fsi::comm
+namespace fsi
+{
+namespace comm
 {
 
 // Bumped whenever the header layout or the meaning of a kind's payload changes.
@@ -87,4 +89,5 @@ std::vector<char> encodePayload(const Message& message);
 // from header. Throws ProtocolError when the size does not match.
 void decodePayload(const MessageHeader& header, const std::vector<char>& bytes, Message& message);
 
-} // namespace fsi::comm
+} // namespace comm
+} // namespace fsi

@@ -15,7 +15,9 @@
 
 #include <vector>
 
-namespace fsi::comm
+namespace fsi
+{
+namespace comm
 {
 
 // Initialises MPI (MPI_THREAD_FUNNELED) unless it already runs. Idempotent.
@@ -51,4 +53,5 @@ LaunchOptions initialiseMpmdWorld(int& argc, char**& argv);
 // (MPI_COMM_NULL when the redirect is off).
 MPI_Comm worldRedirectTarget();
 
-} // namespace fsi::comm
+} // namespace comm
+} // namespace fsi

@@ -8,7 +8,9 @@
 #include <string>
 #include <sys/types.h>
 
-namespace fsi::comm
+namespace fsi
+{
+namespace comm
 {
 
 struct PortFileRecord
@@ -37,4 +39,5 @@ std::string thisHostName();
 // Start time of a running process as epoch seconds (from /proc), negative if unknown.
 double processStartSeconds(long pid);
 
-} // namespace fsi::comm
+} // namespace comm
+} // namespace fsi
