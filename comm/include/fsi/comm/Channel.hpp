@@ -75,8 +75,9 @@ public:
     Channel& operator=(Channel&& other) = delete;
     Channel(const Channel&) = delete;
     Channel& operator=(const Channel&) = delete;
-    // Frees the communicators if the channel was closed or is healthy; after an error it
-    // leaves them alone (never blocks).
+    // If close() was not called and the channel is healthy, frees the communicators locally
+    // (MPI_Comm_free, no talk with the peer); after an error it leaves them alone. Never
+    // blocks. Call close() for an orderly end (port mode needs MPI_Comm_disconnect).
     ~Channel();
 
     // Only the local root's message is transmitted; other ranks return at once (their
@@ -87,8 +88,10 @@ public:
 
     // Waits for the next message. The root receives it; kind, step, iteration, scalars,
     // integers, text and valueCount are broadcast to all local ranks; values stay on the root
-    // (use scatterFromRoot/broadcastFromRoot to distribute them).
-    // Throws PeerAbortError on Abort, ProtocolError if the kind is not expected, TimeoutError.
+    // (use scatterFromRoot/broadcastFromRoot to distribute them). The same exception is
+    // thrown on every local rank: PeerAbortError on Abort (the peer's reason), ProtocolError
+    // if the kind is not the expected one (the channel stays usable to send Abort),
+    // TimeoutError after timeoutSeconds (non-root ranks: timeout + max(2 s, 10 %)).
     Message receive(MessageKind expected);
     Message receiveAny();
 
