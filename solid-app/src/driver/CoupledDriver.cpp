@@ -246,7 +246,6 @@ RunSummary CoupledDriver::run()
     Eigen::VectorXd iterate = uLast, solverOutput = uLast, nodalForce = uLast;
     double dtLast = 0.0;
     RunSummary summary;
-    const int planned = schedule.plannedLevels();
 
     while (true)
     {
@@ -417,10 +416,10 @@ RunSummary CoupledDriver::run()
                   << record.watched[i].y() << ", " << record.watched[i].z() << ") m";
             if (m.params.sectionAngle)
                 s << "; " << m.params.sectionAngle->name << " " << record.sectionAngle << " deg";
-            const double perLevel = record.wallSeconds / summary.levels;
             s << "; level " << secondsSince(levelStart) << " s";
-            if (planned > 0)
-                s << ", ETA " << perLevel * (planned - summary.levels) << " s";
+            const double done = schedule.progress();
+            if (done > 0 && done < 1)
+                s << ", ETA " << std::setprecision(3) << record.wallSeconds * (1 - done) / done << " s";
             m.say(s.str());
         }
 

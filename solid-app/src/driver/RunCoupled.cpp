@@ -67,59 +67,63 @@ int runCoupled(const std::string& configFile, const std::string& outputFolder)
         const long wettedNodes = static_cast<long>(mesh.surface(cfg.mesh.wetted).nodes.size());
         channel.emplace(comm::Channel::open(launch, {comm::Role::Solid, "solid-app", {wettedNodes}},
                                             {"fluid-app", 0, {}}));
-        const MPI_Comm comm = channel->localComm();
-        const bool root = channel->isRoot();
-        const std::string out = outputFolder.empty() ? cfg.output.folder : outputFolder;
-        if (root)
+        // The solver (MUMPS) and the driver use the channel's local communicator, also in their
+        // destructors: they must be gone before channel->close() frees it.
         {
-            fs::create_directories(out);
-            const std::string echo = cfg.echo() + params.echo();
-            std::printf("%s", echo.c_str());
-            io::writeFileAtomically((fs::path(out) / "config.echo.yaml").string(), echo);
-            std::printf("solid-app: coupled with %s; %d nodes, %d cells, %ld wetted nodes, %d rank(s)\n",
-                        channel->peerName().c_str(), mesh.numNodes(), mesh.cells.size(), wettedNodes,
-                        channel->localSize());
-            std::printf("%s\n", cfg.material.describe().c_str());
-        }
-        const auto law = material::makeMaterial(cfg.material, cfg.kinematics);
-        fe::StructuralSolver solid(comm, mesh, *law, app::problemFromConfig(cfg));
-        CommFluidPeer fluid(*channel);
+            const MPI_Comm comm = channel->localComm();
+            const bool root = channel->isRoot();
+            const std::string out = outputFolder.empty() ? cfg.output.folder : outputFolder;
+            if (root)
+            {
+                fs::create_directories(out);
+                const std::string echo = cfg.echo() + params.echo();
+                std::printf("%s", echo.c_str());
+                io::writeFileAtomically((fs::path(out) / "config.echo.yaml").string(), echo);
+                std::printf("solid-app: coupled with %s; %d nodes, %d cells, %ld wetted nodes, %d rank(s)\n",
+                            channel->peerName().c_str(), mesh.numNodes(), mesh.cells.size(), wettedNodes,
+                            channel->localSize());
+                std::printf("%s\n", cfg.material.describe().c_str());
+            }
+            const auto law = material::makeMaterial(cfg.material, cfg.kinematics);
+            fe::StructuralSolver solid(comm, mesh, *law, app::problemFromConfig(cfg));
+            CommFluidPeer fluid(*channel);
 
-        std::vector<WatchedNode> watched;
-        for (const auto& w : cfg.output.watch)
-            watched.push_back({w.name, mesh.nearestNode({w.point[0], w.point[1], w.point[2]})});
-        CoupledDriver driver(comm, solid, &fluid, params, out, cfg.material.relaxationTimes(), watched);
+            std::vector<WatchedNode> watched;
+            for (const auto& w : cfg.output.watch)
+                watched.push_back({w.name, mesh.nearestNode({w.point[0], w.point[1], w.point[2]})});
+            CoupledDriver driver(comm, solid, &fluid, params, out, cfg.material.relaxationTimes(), watched);
 
-        io::PvdSeries series((fs::path(out) / "solid.pvd").string());
-        driver.onLevelAccepted([&](const LevelRecord& r) {
-            if (!cfg.output.vtu || (r.level % cfg.output.every) != 0)
-                return;
-            std::vector<material::Vector6> nodal, cells;
-            solid.cauchyStress(nodal, cells);
-            if (!root)
-                return;
-            char name[64];
-            std::snprintf(name, sizeof name, "solid_%05d.vtu", r.level);
-            io::writeVtu((fs::path(out) / name).string(), mesh, {&solid.displacement(), &nodal, &cells},
-                         cfg.output.binary);
-            series.add(r.time, name);
-            series.write();
-        });
-        const RunSummary s = driver.run();
-        if (root)
-        {
-            char row[512];
-            std::snprintf(row, sizeof row,
-                          "levels,coupling_iterations,fluid_iterations,factorizations,wall_s,fluid_s,"
-                          "solid_s,mapping_s\n%d,%d,%d,%d,%.3f,%.3f,%.3f,%.3f\n",
-                          s.levels, s.couplingIterations, s.fluidIterations, s.factorizations,
-                          s.wallSeconds, s.fluidSeconds, s.solidSeconds, s.mappingSeconds);
-            io::writeFileAtomically((fs::path(out) / "summary.csv").string(), row);
-            std::printf("solid-app: done, %d levels, %d coupling iterations, %d fluid iterations, "
-                        "%d factorizations; wall %.1f s (fluid %.1f, solid %.1f, mapping %.2f); "
-                        "output in %s\n",
-                        s.levels, s.couplingIterations, s.fluidIterations, s.factorizations,
-                        s.wallSeconds, s.fluidSeconds, s.solidSeconds, s.mappingSeconds, out.c_str());
+            io::PvdSeries series((fs::path(out) / "solid.pvd").string());
+            driver.onLevelAccepted([&](const LevelRecord& r) {
+                if (!cfg.output.vtu || (r.level % cfg.output.every) != 0)
+                    return;
+                std::vector<material::Vector6> nodal, cells;
+                solid.cauchyStress(nodal, cells);
+                if (!root)
+                    return;
+                char name[64];
+                std::snprintf(name, sizeof name, "solid_%05d.vtu", r.level);
+                io::writeVtu((fs::path(out) / name).string(), mesh, {&solid.displacement(), &nodal, &cells},
+                             cfg.output.binary);
+                series.add(r.time, name);
+                series.write();
+            });
+            const RunSummary s = driver.run();
+            if (root)
+            {
+                char row[512];
+                std::snprintf(row, sizeof row,
+                              "levels,coupling_iterations,fluid_iterations,factorizations,wall_s,fluid_s,"
+                              "solid_s,mapping_s\n%d,%d,%d,%d,%.3f,%.3f,%.3f,%.3f\n",
+                              s.levels, s.couplingIterations, s.fluidIterations, s.factorizations,
+                              s.wallSeconds, s.fluidSeconds, s.solidSeconds, s.mappingSeconds);
+                io::writeFileAtomically((fs::path(out) / "summary.csv").string(), row);
+                std::printf("solid-app: done, %d levels, %d coupling iterations, %d fluid iterations, "
+                            "%d factorizations; wall %.1f s (fluid %.1f, solid %.1f, mapping %.2f); "
+                            "output in %s\n",
+                            s.levels, s.couplingIterations, s.fluidIterations, s.factorizations,
+                            s.wallSeconds, s.fluidSeconds, s.solidSeconds, s.mappingSeconds, out.c_str());
+            }
         }
         channel->close();
         return 0;
