@@ -74,10 +74,14 @@ void shareFromRoot(MPI_Comm comm, int size, std::int64_t& status, std::vector<ch
 {
     switch (status)
     {
-    case kTimeout: throw TimeoutError(text, true, rank);
-    case kProtocol: throw ProtocolError(text, true, rank);
-    case kPeerAbort: throw PeerAbortError(peerName, text, true, rank);
-    default: throw CommError(text, true, rank);
+    case kTimeout:
+        throw TimeoutError(text, true, rank);
+    case kProtocol:
+        throw ProtocolError(text, true, rank);
+    case kPeerAbort:
+        throw PeerAbortError(peerName, text, true, rank);
+    default:
+        throw CommError(text, true, rank);
     }
 }
 
@@ -126,8 +130,8 @@ void sendRaw(MPI_Comm inter, const Message& message, std::int32_t version, doubl
 // Receives one message from the peer root. The peer's protocol version is returned in
 // peerVersion when given (the caller checks it); otherwise it is checked here, after the payload
 // arrived, so the message stream stays in step even on a mismatch.
-Message receiveRaw(MPI_Comm inter, std::int32_t version, double timeout, const std::string& waitWhat,
-                   std::int32_t* peerVersion = nullptr)
+Message receiveRaw(MPI_Comm inter, std::int32_t version, double timeout,
+                   const std::string& waitWhat, std::int32_t* peerVersion = nullptr)
 {
     EncodedHeader words{};
     MPI_Request request = MPI_REQUEST_NULL;
@@ -145,15 +149,15 @@ Message receiveRaw(MPI_Comm inter, std::int32_t version, double timeout, const s
     }
     const MessageHeader header = decodeHeader(words, static_cast<std::int32_t>(words[1]));
     Message message;
-    const std::int64_t bytes = header.valueCount * 8 + header.scalarCount * 8 +
-                               header.integerCount * 8 + header.textBytes;
+    const std::int64_t bytes =
+        header.valueCount * 8 + header.scalarCount * 8 + header.integerCount * 8 + header.textBytes;
     std::vector<char> payload(static_cast<std::size_t>(bytes));
     if (bytes > 0)
     {
         if (bytes > INT32_MAX)
             throw ProtocolError("fsi::comm: message payload too large");
-        checkMpi(MPI_Irecv(payload.data(), static_cast<int>(bytes), MPI_CHAR, 0, kTagPayload,
-                           inter, &request),
+        checkMpi(MPI_Irecv(payload.data(), static_cast<int>(bytes), MPI_CHAR, 0, kTagPayload, inter,
+                           &request),
                  waitWhat);
         try
         {
@@ -162,9 +166,9 @@ Message receiveRaw(MPI_Comm inter, std::int32_t version, double timeout, const s
         catch (const TimeoutError&)
         {
             MPI_Cancel(&request);
-            throw TimeoutError("fsi::comm: " + waitWhat + ": payload of " +
-                               toString(header.kind) + " not received within " +
-                               seconds(timeout) + "; the peer exited, crashed or hangs");
+            throw TimeoutError("fsi::comm: " + waitWhat + ": payload of " + toString(header.kind) +
+                               " not received within " + seconds(timeout) +
+                               "; the peer exited, crashed or hangs");
         }
     }
     decodePayload(header, payload, message);
@@ -329,10 +333,9 @@ void Channel::connectPort()
                 record.portName = portName;
                 record.pid = static_cast<long>(getpid());
                 record.host = thisHostName();
-                record.createdSeconds =
-                    std::chrono::duration<double>(
-                        std::chrono::system_clock::now().time_since_epoch())
-                        .count();
+                record.createdSeconds = std::chrono::duration<double>(
+                                            std::chrono::system_clock::now().time_since_epoch())
+                                            .count();
                 writePortFileAtomically(path, record);
             }
             catch (const std::exception& e)
@@ -435,8 +438,8 @@ void Channel::connectPort()
                                "share an ompi-server (see scripts/launch-port)"
                          : std::string(),
                 kExitCommTimeout);
-            checkMpi(MPI_Comm_connect(isRoot() ? portName : nullptr, MPI_INFO_NULL, 0,
-                                      localComm_, &interComm_),
+            checkMpi(MPI_Comm_connect(isRoot() ? portName : nullptr, MPI_INFO_NULL, 0, localComm_,
+                                      &interComm_),
                      "MPI_Comm_connect to the port in " + path);
         }
     }
@@ -466,10 +469,9 @@ void Channel::handshake(const PeerExpectation& expectation)
             try
             {
                 std::int32_t peerVersion = 0;
-                const Message reply = receiveRaw(interComm_, self_.protocolVersion, timeout,
-                                                 "waiting for the handshake (Hello) from " +
-                                                     peerName(),
-                                                 &peerVersion);
+                const Message reply = receiveRaw(
+                    interComm_, self_.protocolVersion, timeout,
+                    "waiting for the handshake (Hello) from " + peerName(), &peerVersion);
                 if (reply.kind != MessageKind::Hello || reply.integers.size() < 2)
                     throw ProtocolError("fsi::comm: expected Hello from the peer, got " +
                                         toString(reply.kind));
@@ -481,8 +483,8 @@ void Channel::handshake(const PeerExpectation& expectation)
                 const std::string who = peerName();
                 if (peerVersion != self_.protocolVersion)
                     ourReason = "protocol version mismatch: " + who + " speaks version " +
-                                std::to_string(peerVersion) + ", " + self_.program +
-                                " version " + std::to_string(self_.protocolVersion) +
+                                std::to_string(peerVersion) + ", " + self_.program + " version " +
+                                std::to_string(self_.protocolVersion) +
                                 "; build both programs from the same source";
                 else if (peer_.role != Role::Fluid && peer_.role != Role::Solid)
                     ourReason = "the peer announced an unknown role";
@@ -520,9 +522,9 @@ void Channel::handshake(const PeerExpectation& expectation)
             sendRaw(interComm_, verdict, self_.protocolVersion, timeout, peerName());
             try
             {
-                const Message reply = receiveRaw(interComm_, self_.protocolVersion, timeout,
-                                                 "waiting for the handshake verdict from " +
-                                                     peerName());
+                const Message reply =
+                    receiveRaw(interComm_, self_.protocolVersion, timeout,
+                               "waiting for the handshake verdict from " + peerName());
                 if (reply.kind != MessageKind::HelloReply || reply.integers.size() != 1)
                     throw ProtocolError("fsi::comm: expected HelloReply from the peer, got " +
                                         toString(reply.kind));
@@ -538,8 +540,8 @@ void Channel::handshake(const PeerExpectation& expectation)
                 throw ProtocolError("fsi::comm: handshake of " + self_.program + " with " +
                                     peerName() + " failed: " + ourReason);
             if (!peerReason.empty())
-                throw ProtocolError("fsi::comm: handshake failed: " + peerName() +
-                                    " rejected " + self_.program + ": " + peerReason);
+                throw ProtocolError("fsi::comm: handshake failed: " + peerName() + " rejected " +
+                                    self_.program + ": " + peerReason);
             put64(bytes, static_cast<std::int64_t>(peer_.role));
             put64(bytes, peer_.ranks);
             put64(bytes, static_cast<std::int64_t>(peer_.interfaceSizes.size()));
@@ -633,8 +635,8 @@ Message Channel::receiveOnRoot(MessageKind expected, bool anyKind, double timeou
             {
                 throw ProtocolError("fsi::comm: expected " + toString(expected) + " from " +
                                     peerName() + ", received " + toString(message.kind) +
-                                    " (step " + std::to_string(message.timeStep) +
-                                    ", iteration " + std::to_string(message.iteration) + ")");
+                                    " (step " + std::to_string(message.timeStep) + ", iteration " +
+                                    std::to_string(message.iteration) + ")");
             }
             Message small = message;
             small.values.clear();
@@ -685,9 +687,9 @@ Message Channel::receiveOnRoot(MessageKind expected, bool anyKind, double timeou
             w = get64(bytes, at);
         const std::int64_t valueCount = get64(bytes, at);
         const MessageHeader header = decodeHeader(words, kProtocolVersion);
-        decodePayload(header, std::vector<char>(bytes.begin() + static_cast<std::ptrdiff_t>(at),
-                                                bytes.end()),
-                      message);
+        decodePayload(
+            header, std::vector<char>(bytes.begin() + static_cast<std::ptrdiff_t>(at), bytes.end()),
+            message);
         message.valueCount = valueCount;
     }
     return message;

@@ -39,8 +39,7 @@ void waitBounded(MPI_Request& request, double timeoutSeconds, const std::string&
         if (Clock::now() >= deadline)
         {
             std::ostringstream text;
-            text << "fsi::comm: " << what << " did not complete within " << timeoutSeconds
-                 << " s";
+            text << "fsi::comm: " << what << " did not complete within " << timeoutSeconds << " s";
             throw TimeoutError(text.str());
         }
         if (polls > 200)
@@ -56,8 +55,8 @@ namespace
 int toInt(std::int64_t n, const char* what)
 {
     if (n < 0 || n > INT_MAX)
-        throw CommError(std::string("fsi::comm: ") + what + " count out of range: " +
-                        std::to_string(n));
+        throw CommError(std::string("fsi::comm: ") + what +
+                        " count out of range: " + std::to_string(n));
     return static_cast<int>(n);
 }
 } // namespace
@@ -85,8 +84,8 @@ std::vector<double> gatherToRoot(MPI_Comm comm, const std::vector<double>& local
         }
         all.resize(static_cast<std::size_t>(toInt(total, "gatherToRoot")));
     }
-    checkMpi(MPI_Igatherv(local.data(), mine, MPI_DOUBLE, all.data(), counts.data(),
-                          offsets.data(), MPI_DOUBLE, 0, comm, &request),
+    checkMpi(MPI_Igatherv(local.data(), mine, MPI_DOUBLE, all.data(), counts.data(), offsets.data(),
+                          MPI_DOUBLE, 0, comm, &request),
              "gatherToRoot");
     waitBounded(request, timeoutSeconds, "gatherToRoot on the local ranks");
     return all;

@@ -37,8 +37,8 @@ void exitOnError(const std::exception& error, Channel* channel, ErrorScope scope
     const auto* commError = dynamic_cast<const CommError*>(&error);
     const bool everyRank = (commError && commError->everyRank()) || scope == ErrorScope::AllRanks;
     const int localRank = commError && commError->everyRank() ? commError->localRank()
-                          : channel                          ? channel->localRank()
-                                                             : 0;
+                          : channel                           ? channel->localRank()
+                                                              : 0;
     if (!everyRank || localRank == 0)
         std::fprintf(stderr, "error: %s\n", error.what());
     std::fflush(stderr);

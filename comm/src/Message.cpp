@@ -28,14 +28,22 @@ std::string toString(MessageKind kind)
 {
     switch (kind)
     {
-    case MessageKind::Hello: return "Hello";
-    case MessageKind::HelloReply: return "HelloReply";
-    case MessageKind::InterfaceGeometry: return "InterfaceGeometry";
-    case MessageKind::Solve: return "Solve";
-    case MessageKind::Forces: return "Forces";
-    case MessageKind::Accept: return "Accept";
-    case MessageKind::Finish: return "Finish";
-    case MessageKind::Abort: return "Abort";
+    case MessageKind::Hello:
+        return "Hello";
+    case MessageKind::HelloReply:
+        return "HelloReply";
+    case MessageKind::InterfaceGeometry:
+        return "InterfaceGeometry";
+    case MessageKind::Solve:
+        return "Solve";
+    case MessageKind::Forces:
+        return "Forces";
+    case MessageKind::Accept:
+        return "Accept";
+    case MessageKind::Finish:
+        return "Finish";
+    case MessageKind::Abort:
+        return "Abort";
     }
     return "Unknown(" + std::to_string(static_cast<std::int64_t>(kind)) + ")";
 }
@@ -48,9 +56,16 @@ bool isKnownKind(std::int64_t value)
 
 EncodedHeader encodeHeader(const MessageHeader& h)
 {
-    EncodedHeader w{kMessageMagic, h.version, static_cast<std::int64_t>(h.kind),
-                    h.timeStep,    h.iteration, h.valueCount,
-                    h.scalarCount, h.integerCount, h.textBytes, 0};
+    EncodedHeader w{kMessageMagic,
+                    h.version,
+                    static_cast<std::int64_t>(h.kind),
+                    h.timeStep,
+                    h.iteration,
+                    h.valueCount,
+                    h.scalarCount,
+                    h.integerCount,
+                    h.textBytes,
+                    0};
     w[kHeaderWords - 1] = checkWord(w);
     return w;
 }
@@ -59,8 +74,9 @@ MessageHeader decodeHeader(const EncodedHeader& w, std::int32_t expectedVersion)
 {
     if (w[0] != kMessageMagic)
     {
-        throw ProtocolError("fsi::comm: received data that is not an fsi::comm message (bad magic " +
-                            std::to_string(w[0]) + "); is the peer an fsi program?");
+        throw ProtocolError(
+            "fsi::comm: received data that is not an fsi::comm message (bad magic " +
+            std::to_string(w[0]) + "); is the peer an fsi program?");
     }
     if (w[kHeaderWords - 1] != checkWord(w))
     {
@@ -123,13 +139,17 @@ std::vector<char> encodePayload(const Message& m)
     const std::size_t ni = m.integers.size() * sizeof(std::int64_t);
     std::vector<char> bytes(nv + ns + ni + m.text.size());
     char* p = bytes.data();
-    if (nv) std::memcpy(p, m.values.data(), nv);
+    if (nv)
+        std::memcpy(p, m.values.data(), nv);
     p += nv;
-    if (ns) std::memcpy(p, m.scalars.data(), ns);
+    if (ns)
+        std::memcpy(p, m.scalars.data(), ns);
     p += ns;
-    if (ni) std::memcpy(p, m.integers.data(), ni);
+    if (ni)
+        std::memcpy(p, m.integers.data(), ni);
     p += ni;
-    if (!m.text.empty()) std::memcpy(p, m.text.data(), m.text.size());
+    if (!m.text.empty())
+        std::memcpy(p, m.text.data(), m.text.size());
     return bytes;
 }
 
@@ -151,13 +171,16 @@ void decodePayload(const MessageHeader& h, const std::vector<char>& bytes, Messa
     m.iteration = h.iteration;
     m.valueCount = h.valueCount;
     m.values.resize(h.valueCount);
-    if (nv) std::memcpy(m.values.data(), p, nv);
+    if (nv)
+        std::memcpy(m.values.data(), p, nv);
     p += nv;
     m.scalars.resize(h.scalarCount);
-    if (ns) std::memcpy(m.scalars.data(), p, ns);
+    if (ns)
+        std::memcpy(m.scalars.data(), p, ns);
     p += ns;
     m.integers.resize(h.integerCount);
-    if (ni) std::memcpy(m.integers.data(), p, ni);
+    if (ni)
+        std::memcpy(m.integers.data(), p, ni);
     p += ni;
     m.text.assign(p, nt);
 }

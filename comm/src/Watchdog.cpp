@@ -8,8 +8,7 @@
 namespace fsi::comm::detail
 {
 
-Watchdog::Watchdog(double timeoutSeconds, std::string message, int exitCode,
-                   std::string removeFile)
+Watchdog::Watchdog(double timeoutSeconds, std::string message, int exitCode, std::string removeFile)
 {
     const auto limit = std::chrono::duration<double>(timeoutSeconds);
     thread_ = std::thread(

@@ -18,8 +18,7 @@ class Watchdog
 public:
     // message is printed as "error: <message>" when the watchdog fires (empty = silent);
     // removeFile (if not empty) is deleted first (the server's port file).
-    Watchdog(double timeoutSeconds, std::string message, int exitCode,
-             std::string removeFile = {});
+    Watchdog(double timeoutSeconds, std::string message, int exitCode, std::string removeFile = {});
     ~Watchdog(); // disarms
     Watchdog(const Watchdog&) = delete;
     Watchdog& operator=(const Watchdog&) = delete;

@@ -36,9 +36,15 @@ extern "C"
         return PMPI_Init_thread(argc, argv, required, provided);
     }
 
-    int MPI_Initialized(int* flag) { return PMPI_Initialized(flag); }
+    int MPI_Initialized(int* flag)
+    {
+        return PMPI_Initialized(flag);
+    }
 
-    int MPI_Finalized(int* flag) { return PMPI_Finalized(flag); }
+    int MPI_Finalized(int* flag)
+    {
+        return PMPI_Finalized(flag);
+    }
 
     int MPI_Finalize(void)
     {
@@ -50,9 +56,15 @@ extern "C"
         return PMPI_Finalize();
     }
 
-    int MPI_Comm_size(MPI_Comm comm, int* size) { return PMPI_Comm_size(world(comm), size); }
+    int MPI_Comm_size(MPI_Comm comm, int* size)
+    {
+        return PMPI_Comm_size(world(comm), size);
+    }
 
-    int MPI_Comm_rank(MPI_Comm comm, int* rank) { return PMPI_Comm_rank(world(comm), rank); }
+    int MPI_Comm_rank(MPI_Comm comm, int* rank)
+    {
+        return PMPI_Comm_rank(world(comm), rank);
+    }
 
     int MPI_Comm_group(MPI_Comm comm, MPI_Group* group)
     {
@@ -81,8 +93,8 @@ extern "C"
                       MPI_Datatype sendtype, void* recvbuf, const int recvcounts[],
                       const int rdispls[], MPI_Datatype recvtype, MPI_Comm comm)
     {
-        return PMPI_Alltoallv(sendbuf, sendcounts, sdispls, sendtype, recvbuf, recvcounts,
-                              rdispls, recvtype, world(comm));
+        return PMPI_Alltoallv(sendbuf, sendcounts, sdispls, sendtype, recvbuf, recvcounts, rdispls,
+                              recvtype, world(comm));
     }
 
     int MPI_Gatherv(const void* sendbuf, int sendcount, MPI_Datatype sendtype, void* recvbuf,
@@ -125,8 +137,8 @@ extern "C"
         return PMPI_Recv(buf, count, datatype, source, tag, world(comm), status);
     }
 
-    int MPI_Irecv(void* buf, int count, MPI_Datatype datatype, int source, int tag,
-                  MPI_Comm comm, MPI_Request* request)
+    int MPI_Irecv(void* buf, int count, MPI_Datatype datatype, int source, int tag, MPI_Comm comm,
+                  MPI_Request* request)
     {
         return PMPI_Irecv(buf, count, datatype, source, tag, world(comm), request);
     }

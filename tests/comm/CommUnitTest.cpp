@@ -141,8 +141,9 @@ TEST(LaunchOptionsParsing, DefaultsAndBothFlagForms)
     EXPECT_EQ(d.timeoutSeconds, 600.0);
     EXPECT_EQ(none, std::vector<std::string>{"case"});
 
-    std::vector<std::string> args = {"-parallel", "--launch", "port", "--port-file=dir/p.txt",
-                                     "-case", "x", "--comm-timeout", "2.5"};
+    std::vector<std::string> args = {
+        "-parallel", "--launch", "port",           "--port-file=dir/p.txt",
+        "-case",     "x",        "--comm-timeout", "2.5"};
     const LaunchOptions o = parseLaunchOptions(args);
     EXPECT_EQ(o.mode, LaunchMode::Port);
     EXPECT_EQ(o.portFile, "dir/p.txt");
@@ -169,8 +170,8 @@ TEST(LaunchOptionsParsing, ArgvIsCompactedForOpenFoam)
 {
     std::string a0 = "fluid-app", a1 = "-case", a2 = "c", a3 = "--launch", a4 = "mpmd",
                 a5 = "-parallel", a6 = "--comm-timeout=9";
-    char* argv[] = {a0.data(), a1.data(), a2.data(), a3.data(), a4.data(), a5.data(), a6.data(),
-                    nullptr};
+    char* argv[] = {a0.data(), a1.data(), a2.data(), a3.data(),
+                    a4.data(), a5.data(), a6.data(), nullptr};
     int argc = 7;
     const LaunchOptions o = parseLaunchOptions(argc, argv);
     EXPECT_EQ(o.timeoutSeconds, 9.0);
@@ -206,7 +207,8 @@ TEST(PortFile, GarbageIsRejectedWithTheReason)
     const std::string fix = "; delete it and restart the solid (server) side";
     EXPECT_EQ(fails("hello world\n"),
               "port file case/fsi.port: first line is not 'fsi-comm-port-file 1' (not a port "
-              "file or written by another version)" + fix);
+              "file or written by another version)" +
+                  fix);
     EXPECT_EQ(fails("fsi-comm-port-file 1\nport=x\nnonsense\n"),
               "port file case/fsi.port: line 'nonsense' is not key=value" + fix);
     EXPECT_EQ(fails("fsi-comm-port-file 1\nport=x\npid=12ab\nhost=h\ncreated=1\n"),
@@ -216,7 +218,8 @@ TEST(PortFile, GarbageIsRejectedWithTheReason)
     EXPECT_EQ(fails("fsi-comm-port-file 1\nport=x\npid=12\nhost=h\ncreated=1\ncolour=red\n"),
               "port file case/fsi.port: unknown key 'colour'" + fix);
     EXPECT_EQ(fails(""), "port file case/fsi.port: first line is not 'fsi-comm-port-file 1' "
-                         "(not a port file or written by another version)" + fix);
+                         "(not a port file or written by another version)" +
+                             fix);
 }
 
 TEST(PortFile, AtomicWriteLeavesOnlyTheFile)
@@ -250,8 +253,8 @@ TEST(PortFile, StaleDetection)
         _exit(0);
     waitpid(child, nullptr, 0);
     PortFileRecord dead{"p", static_cast<long>(child), thisHostName(), now()};
-    EXPECT_EQ(staleReason(dead), "the server that wrote it (pid " + std::to_string(child) +
-                                     " on " + thisHostName() + ") is no longer running");
+    EXPECT_EQ(staleReason(dead), "the server that wrote it (pid " + std::to_string(child) + " on " +
+                                     thisHostName() + ") is no longer running");
 
     // Our pid, but the file claims to be older than this process: pid reused after a crash.
     const double started = processStartSeconds(getpid());

@@ -31,7 +31,10 @@ inline double forceValue(double displacement, std::int64_t i)
 {
     return -3.0 * displacement + static_cast<double>(i) * 0.25;
 }
-inline double geometryValue(std::int64_t i) { return static_cast<double>(i) * 1.5e-3 - 7.0; }
+inline double geometryValue(std::int64_t i)
+{
+    return static_cast<double>(i) * 1.5e-3 - 7.0;
+}
 
 // Block partition of n values over size ranks: count of rank r, and its first global index.
 inline std::int64_t blockCount(std::int64_t n, int size, int rank)
@@ -45,15 +48,15 @@ inline std::int64_t blockStart(std::int64_t n, int size, int rank)
 
 struct DriverFlags
 {
-    std::int64_t geometrySize = 12;        // InterfaceGeometry values sent by the fluid
-    int protocolVersion = kProtocolVersion; // --protocol-version (tests a mismatch)
-    int expectPeerRanks = 0;                // --expect-peer-ranks
+    std::int64_t geometrySize = 12;            // InterfaceGeometry values sent by the fluid
+    int protocolVersion = kProtocolVersion;    // --protocol-version (tests a mismatch)
+    int expectPeerRanks = 0;                   // --expect-peer-ranks
     std::vector<std::int64_t> expectPeerSizes; // --expect-peer-sizes a,b
     std::vector<std::int64_t> interfaceSizes;  // --interface-sizes a,b (announced)
-    int dieAfter = -1;     // --die-after N: _exit(3) before the N-th channel operation
-    bool dieBySignal = false; // --die-signal: raise SIGKILL instead of _exit(3)
-    int abortAfter = -1;   // --abort-after N: send Abort instead of the N-th operation
-    int wrongKindAt = -1;  // --send-wrong-kind-at N: the N-th operation sends Accept instead
+    int dieAfter = -1;          // --die-after N: _exit(3) before the N-th channel operation
+    bool dieBySignal = false;   // --die-signal: raise SIGKILL instead of _exit(3)
+    int abortAfter = -1;        // --abort-after N: send Abort instead of the N-th operation
+    int wrongKindAt = -1;       // --send-wrong-kind-at N: the N-th operation sends Accept instead
     bool handshakeOnly = false; // --handshake-only: solid sends Finish right away
     std::string expectPeerProgram = "fluid-like"; // --expect-peer-program (solid side)
     int checkWorldSize = 0; // --check-world-size N (fluid with redirect): MPI_COMM_WORLD size
@@ -140,7 +143,7 @@ public:
         }
         if (count_ == flags_.abortAfter)
             throw CollectiveTestError("test abort requested before operation " +
-                                     std::to_string(count_));
+                                      std::to_string(count_));
         return count_ == flags_.wrongKindAt;
     }
 

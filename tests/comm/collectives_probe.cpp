@@ -53,8 +53,8 @@ int main(int argc, char** argv)
     check(back == mine, "scatterFromRoot returns each rank's part", rank);
 
     // Broadcast, including an empty array.
-    std::vector<double> values = rank == 0 ? std::vector<double>{1.5, -2.0, 3e300}
-                                           : std::vector<double>{9.0};
+    std::vector<double> values =
+        rank == 0 ? std::vector<double>{1.5, -2.0, 3e300} : std::vector<double>{9.0};
     broadcastFromRoot(comm, values, 10.0);
     check(values == std::vector<double>{1.5, -2.0, 3e300}, "broadcastFromRoot values", rank);
     std::vector<double> empty = rank == 0 ? std::vector<double>{} : std::vector<double>{1.0, 2.0};

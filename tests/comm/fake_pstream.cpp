@@ -71,5 +71,8 @@ extern "C"
         return left;
     }
 
-    int fakePstreamFinalize() { return MPI_Finalize(); }
+    int fakePstreamFinalize()
+    {
+        return MPI_Finalize();
+    }
 }

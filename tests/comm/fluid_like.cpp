@@ -26,9 +26,9 @@ void run(const LaunchOptions& launch, const DriverFlags& flags, std::optional<Ch
     Identity self;
     self.role = Role::Fluid;
     self.program = "fluid-like";
-    self.interfaceSizes =
-        flags.interfaceSizes.empty() ? std::vector<std::int64_t>{flags.geometrySize}
-                                     : flags.interfaceSizes;
+    self.interfaceSizes = flags.interfaceSizes.empty()
+                              ? std::vector<std::int64_t>{flags.geometrySize}
+                              : flags.interfaceSizes;
     self.protocolVersion = flags.protocolVersion;
     PeerExpectation expect;
     expect.ranks = flags.expectPeerRanks;
@@ -67,8 +67,7 @@ void run(const LaunchOptions& launch, const DriverFlags& flags, std::optional<Ch
         {
             inject.before("receive Solve");
             const Message solve = channel.receive(MessageKind::Solve);
-            require(solve.timeStep == step && solve.iteration == iteration &&
-                        solve.valueCount == n,
+            require(solve.timeStep == step && solve.iteration == iteration && solve.valueCount == n,
                     "Solve header step/iteration/count");
             const std::int64_t start = blockStart(n, size, rank);
             const std::vector<double> mine =
@@ -78,8 +77,7 @@ void run(const LaunchOptions& launch, const DriverFlags& flags, std::optional<Ch
             {
                 const std::int64_t i = start + static_cast<std::int64_t>(k);
                 require(mine[k] == displacementValue(i, step, iteration),
-                        "displacement " + std::to_string(i) + " of level " +
-                            std::to_string(step));
+                        "displacement " + std::to_string(i) + " of level " + std::to_string(step));
                 forces[k] = forceValue(mine[k], i);
             }
             Message reply;

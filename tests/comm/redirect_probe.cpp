@@ -50,8 +50,8 @@ int main(int argc, char** argv)
         PMPI_Comm_size(MPI_COMM_WORLD, &realWorld);
         MPI_Comm_size(MPI_COMM_WORLD, &size);
         MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-        require(size == expected, "MPI_Comm_size(MPI_COMM_WORLD) in the executable is " +
-                                      std::to_string(size));
+        require(size == expected,
+                "MPI_Comm_size(MPI_COMM_WORLD) in the executable is " + std::to_string(size));
         require(fakePstreamWorldSize() == expected,
                 "MPI_Comm_size(MPI_COMM_WORLD) in a shared library is " +
                     std::to_string(fakePstreamWorldSize()));

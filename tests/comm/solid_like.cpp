@@ -14,8 +14,8 @@ void run(const LaunchOptions& launch, const DriverFlags& flags, std::optional<Ch
     Identity self;
     self.role = Role::Solid;
     self.program = "solid-like";
-    self.interfaceSizes = flags.interfaceSizes.empty() ? std::vector<std::int64_t>{5}
-                                                       : flags.interfaceSizes;
+    self.interfaceSizes =
+        flags.interfaceSizes.empty() ? std::vector<std::int64_t>{5} : flags.interfaceSizes;
     self.protocolVersion = flags.protocolVersion;
     PeerExpectation expect;
     expect.program = flags.expectPeerProgram;

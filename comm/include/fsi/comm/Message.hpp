@@ -50,12 +50,12 @@ struct MessageHeader
 {
     std::int32_t version = kProtocolVersion;
     MessageKind kind = MessageKind::Finish;
-    std::int64_t timeStep = 0;    // time level index, 0 before the first level
-    std::int64_t iteration = 0;   // coupling iteration within the level
-    std::int64_t valueCount = 0;  // number of bulk doubles in the payload
-    std::int64_t scalarCount = 0; // number of small doubles in the payload
+    std::int64_t timeStep = 0;     // time level index, 0 before the first level
+    std::int64_t iteration = 0;    // coupling iteration within the level
+    std::int64_t valueCount = 0;   // number of bulk doubles in the payload
+    std::int64_t scalarCount = 0;  // number of small doubles in the payload
     std::int64_t integerCount = 0; // number of int64 in the payload
-    std::int64_t textBytes = 0;   // bytes of text in the payload (no terminator)
+    std::int64_t textBytes = 0;    // bytes of text in the payload (no terminator)
 };
 
 // The header travels as kHeaderWords int64: magic, version, kind, step, iteration, four
@@ -66,7 +66,8 @@ using EncodedHeader = std::array<std::int64_t, kHeaderWords>;
 EncodedHeader encodeHeader(const MessageHeader& header);
 // Throws ProtocolError with a one-line message when magic, check word, kind or a count is
 // invalid, or when the version differs from expectedVersion (names both versions).
-MessageHeader decodeHeader(const EncodedHeader& words, std::int32_t expectedVersion = kProtocolVersion);
+MessageHeader decodeHeader(const EncodedHeader& words,
+                           std::int32_t expectedVersion = kProtocolVersion);
 
 // One message as the API sees it. Values are in SI units as agreed per kind.
 struct Message
@@ -85,8 +86,8 @@ MessageHeader headerOf(const Message& message);
 
 // Payload bytes: values, scalars, integers, then text, native byte order (homogeneous clusters).
 std::vector<char> encodePayload(const Message& message);
-// Fills values/scalars/integers/text of message from bytes laid out as encodePayload does; counts come
-// from header. Throws ProtocolError when the size does not match.
+// Fills values/scalars/integers/text of message from bytes laid out as encodePayload does; counts
+// come from header. Throws ProtocolError when the size does not match.
 void decodePayload(const MessageHeader& header, const std::vector<char>& bytes, Message& message);
 
 } // namespace comm

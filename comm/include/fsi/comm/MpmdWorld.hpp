@@ -28,11 +28,11 @@ void finaliseMpi();
 // The layout of an MPMD launch, computed once per process.
 struct MpmdLayout
 {
-    int appNumber = 0;          // MPI_APPNUM of this process (0 = first program on the line)
-    int appCount = 0;           // number of programs in the launch
-    int worldRank = 0;          // rank in the real MPI_COMM_WORLD
+    int appNumber = 0; // MPI_APPNUM of this process (0 = first program on the line)
+    int appCount = 0;  // number of programs in the launch
+    int worldRank = 0; // rank in the real MPI_COMM_WORLD
     int worldSize = 0;
-    std::vector<int> appLeaders; // real world rank of each program's first process
+    std::vector<int> appLeaders;          // real world rank of each program's first process
     MPI_Comm programComm = MPI_COMM_NULL; // this program's ranks; owned by the library
 };
 
