@@ -440,7 +440,9 @@ void Channel::connectPort()
                 kExitCommTimeout);
             checkMpi(MPI_Comm_connect(isRoot() ? portName : nullptr, MPI_INFO_NULL, 0, localComm_,
                                       &interComm_),
-                     "MPI_Comm_connect to the port in " + path);
+                     "MPI_Comm_connect to the port in " + path +
+                         " (is the solid still accepting? two mpiruns need the same "
+                         "--ompi-server, see scripts/launch-port)");
         }
     }
     MPI_Comm_set_errhandler(interComm_, MPI_ERRORS_RETURN);
