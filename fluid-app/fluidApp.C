@@ -26,6 +26,8 @@ Usage
 #include "turbulentTransportModel.H"
 #include "fluidSolidCoupling.H"
 
+#include <cmath>
+
 int main(int argc, char* argv[])
 {
     // Before argList: strips the comm flags, starts MPI and the MPMD world
@@ -94,6 +96,10 @@ int main(int argc, char* argv[])
             result.iterations = iter;
             result.residualU = residualU;
             result.residualP = residualP;
+            if (!std::isfinite(residualU) || !std::isfinite(residualP))
+            {
+                break;   // diverged: the coupling class stops the run
+            }
 
             const bool dropOk =
                 ctrl.residualDrop > 0

@@ -15,6 +15,7 @@
 #include "clockTime.H"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 // * * * * * * * * * * * * * * * * Local helpers * * * * * * * * * * * * * * //
@@ -452,6 +453,12 @@ void Foam::fluidSolidCoupling::moveInterface
             max(maxError, mag(mesh_.points()[meshPoints[i]] - (points0_[i] + displacement_[i])));
     }
     reduce(maxError, maxOp<scalar>());
+    if (maxError > 1e-9*mesh_.bounds().mag())
+    {
+        WarningInFunction
+            << "interface points are off the received positions by " << maxError
+            << " m (2-D case with a displacement normal to the empty planes?)" << endl;
+    }
     Info<< "fsi: mesh moved in " << clock.elapsedTime() << " s; max |x - (x0 + d)| on "
         << patchName_ << " = " << maxError << " m, max |d| = "
         << gMax(mag(displacement_)()) << " m" << endl;
@@ -467,6 +474,19 @@ void Foam::fluidSolidCoupling::moveInterface
 
     // Steady: fluxes from U on the moved mesh, no mesh-flux terms
     phi_ = fvc::flux(U_);
+}
+
+
+void Foam::fluidSolidCoupling::checkDiverged(const SolveResult& r)
+{
+    if (!std::isfinite(r.residualU) || !std::isfinite(r.residualP))
+    {
+        failWith
+        (
+            "the steady flow solve diverged (non-finite residuals) at SIMPLE iteration "
+          + Foam::name(r.iterations) + "; check the mesh, fvSchemes and relaxationFactors"
+        );
+    }
 }
 
 
@@ -596,6 +616,7 @@ int Foam::fluidSolidCoupling::runRigid(const SteadySolver& solve)
 {
     Info<< "fsi: rigid mode (no coupling): steady solve to convergence" << nl << endl;
     const SolveResult r = solve(controls("rigid"));
+    checkDiverged(r);
     Info<< "fsi: rigid solve: " << r.iterations << " SIMPLE iterations, residuals U "
         << r.residualU << " p " << r.residualP
         << (r.converged ? " (converged)" : " (iteration cap reached)") << endl;
@@ -681,6 +702,7 @@ int Foam::fluidSolidCoupling::runCoupled
                 Info<< "fsi: SOLVE step " << c.step << " iteration " << c.iteration << endl;
                 moveInterface(c.displacements);
                 const SolveResult r = solve(ctrl);
+                checkDiverged(r);
                 ForceReport report;
                 const vectorField f(faceForces(patchi_));
                 report.faceForces = gatherFaceForces(f);

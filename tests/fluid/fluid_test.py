@@ -281,16 +281,16 @@ def coupled_run(a, name, mode, nfluid, solid_args, timeout=300):
     solid = [a.fake_solid, "--out", os.path.join(d, "solid.csv")] + solid_args
     if mode == "mpmd":
         cmd = ([a.mpiexec] + MPI_FLAGS + ["-np", str(nfluid)] + fluid
-               + ["--launch", "mpmd", "--comm-timeout", "60", ":", "-np", "1"] + solid
-               + ["--launch", "mpmd", "--comm-timeout", "60"])
+               + ["--launch", "mpmd", "--comm-timeout", "300", ":", "-np", "1"] + solid
+               + ["--launch", "mpmd", "--comm-timeout", "300"])
     else:
         pf = os.path.join(d, "fsi.port")
         lp = [a.launch_port, "--mpiexec", a.mpiexec]
         for fl in MPI_FLAGS:
             lp += ["--mpi-flag", fl]
         cmd = (lp + ["-np", str(nfluid)] + fluid + ["--launch", "port", "--port-file", pf,
-                                                     "--comm-timeout", "60", ":", "-np", "1"]
-               + solid + ["--launch", "port", "--port-file", pf, "--comm-timeout", "60"])
+                                                     "--comm-timeout", "300", ":", "-np", "1"]
+               + solid + ["--launch", "port", "--port-file", pf, "--comm-timeout", "300"])
     rc, log = run(cmd, os.path.join(d, "log.coupled"), timeout=timeout)
     return d, rc, log
 
@@ -299,22 +299,22 @@ def t_mpmd(a):
     rows = {}
     for n in (1, 2):
         d, rc, log = coupled_run(a, "mpmd-np%d" % n, "mpmd", n,
-                                 ["--angle", "2", "--steps", "2", "--iterations", "2",
+                                 ["--angle", "2", "--steps", "1", "--iterations", "2",
                                   "--expect-fluid-ranks", str(n)])
         check(rc == 0 and "fake-solid: done with fluid-app (fluid, %d rank" % n in log,
               "MPMD fluid-app on %d rank(s) : fake-solid, exit %d" % (n, rc))
         check(re.search(r"nProcs\s*:\s*%d\b" % n, log) is not None,
               "OpenFOAM sees nProcs %d of the 3-process MPMD job (world redirect)" % n)
-        tdir = os.path.join(d, "processor0" if n > 1 else "", "20")
+        tdir = os.path.join(d, "processor0" if n > 1 else "", "10")
         check(os.path.isfile(os.path.join(tdir, "U")) and os.path.isfile(os.path.join(tdir, "polyMesh", "points")),
-              "accepted level written to time 20 (fields + moved points)")
+              "accepted level written to time 10 (fields + moved points)")
         rows[n] = read_csv(os.path.join(d, "solid.csv"))
         for r in rows[n]:
             print("      step %d iteration %d: %d SIMPLE iterations, F = (%.9g %.9g) N" % (r[0], r[1], r[2], r[5], r[6]))
-        check(rows[n][1][2] < rows[n][0][2] and rows[n][3][2] < rows[n][2][2],
+        check(rows[n][1][2] < rows[n][0][2],
               "repeating a displacement needs fewer SIMPLE iterations (warm start)")
     dmax = max(math.dist(r1[5:8], r2[5:8]) / math.hypot(*r1[5:8]) for r1, r2 in zip(rows[1], rows[2]))
-    check(len(rows[1]) == len(rows[2]) == 4 and dmax <= 1e-5,
+    check(len(rows[1]) == len(rows[2]) == 2 and dmax <= 1e-5,
           "forces returned to the driver, 1 vs 2 fluid ranks: max rel. diff %.3e <= 1e-5" % dmax)
 
 
