@@ -53,11 +53,12 @@ struct DriverFlags
     int expectPeerRanks = 0;                   // --expect-peer-ranks
     std::vector<std::int64_t> expectPeerSizes; // --expect-peer-sizes a,b
     std::vector<std::int64_t> interfaceSizes;  // --interface-sizes a,b (announced)
-    int dieAfter = -1;          // --die-after N: _exit(3) before the N-th channel operation
-    bool dieBySignal = false;   // --die-signal: raise SIGKILL instead of _exit(3)
-    int abortAfter = -1;        // --abort-after N: send Abort instead of the N-th operation
-    int wrongKindAt = -1;       // --send-wrong-kind-at N: the N-th operation sends Accept instead
-    bool handshakeOnly = false; // --handshake-only: solid sends Finish right away
+    int dieAfter = -1;        // --die-after N: _exit(3) before the N-th channel operation
+    bool dieBySignal = false; // --die-signal: raise SIGKILL instead of _exit(3)
+    int quitAfter = -1;       // --quit-after N: MPI_Finalize and exit(0) before the N-th operation
+    int abortAfter = -1;      // --abort-after N: send Abort instead of the N-th operation
+    int wrongKindAt = -1;     // --send-wrong-kind-at N: the N-th operation sends Accept instead
+    bool handshakeOnly = false;                   // --handshake-only: solid sends Finish right away
     std::string expectPeerProgram = "fluid-like"; // --expect-peer-program (solid side)
     int checkWorldSize = 0; // --check-world-size N (fluid with redirect): MPI_COMM_WORLD size
 };
@@ -99,6 +100,8 @@ inline DriverFlags parseDriverFlags(int argc, char** argv)
             f.interfaceSizes = parseList(next());
         else if (a == "--die-after")
             f.dieAfter = std::stoi(next());
+        else if (a == "--quit-after")
+            f.quitAfter = std::stoi(next());
         else if (a == "--die-signal")
             f.dieBySignal = true;
         else if (a == "--abort-after")
@@ -140,6 +143,14 @@ public:
             if (flags_.dieBySignal)
                 std::raise(SIGKILL);
             ::_exit(3);
+        }
+        if (count_ == flags_.quitAfter)
+        {
+            std::fprintf(stderr, "%s: test: quitting quietly before operation %d (%s)\n",
+                         channel_.self().program.c_str(), count_, what);
+            std::fflush(stderr);
+            finaliseMpi();
+            std::exit(0);
         }
         if (count_ == flags_.abortAfter)
             throw CollectiveTestError("test abort requested before operation " +
