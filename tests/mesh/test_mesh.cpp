@@ -110,3 +110,26 @@ TEST(Mesh, NearestNode)
     const int n = m.nearestNode(Eigen::Vector3d(0.49, 0.51, 1.2));
     EXPECT_NEAR((m.nodes.col(n) - Eigen::Vector3d(0.5, 0.5, 1.0)).norm(), 0.0, 1e-12);
 }
+
+// scripts/convert-mesh: an Abaqus C3D20 cube with an element set and two node sets becomes a
+// .msh with a physical volume and two physical surfaces (boundary faces of the node sets).
+TEST(ConvertMesh, AbaqusInpKeepsGroups)
+{
+    const std::string out = tempPath("converted.msh");
+    const std::string cmd = "/usr/bin/python3 " FSI_SOURCE_DIR "/scripts/convert-mesh " FSI_SOURCE_DIR
+                            "/tests/mesh/abaqus_c3d20_cube.inp " + out + " > /dev/null 2>&1";
+    if (std::system("/usr/bin/python3 -c 'import meshio' > /dev/null 2>&1") != 0)
+        GTEST_SKIP() << "python3-meshio not installed";
+    ASSERT_EQ(std::system(cmd.c_str()), 0);
+    const mesh::Mesh m = mesh::readGmsh(out, {"body", {"fixed", "load"}}, true);
+    EXPECT_EQ(m.cellTypeCounts().at("Hex20"), 1);
+    EXPECT_GT(m.minJacobian(0), 0.0);
+    const auto& fixed = m.surface("fixed");
+    ASSERT_EQ(fixed.faces.size(), 1);
+    EXPECT_EQ(fixed.faces.types[0], mesh::CellType::Quad8);
+    EXPECT_EQ(fixed.nodes.size(), 8u);
+    for (int n : fixed.nodes)
+        EXPECT_DOUBLE_EQ(m.nodes(0, n), 0.0);
+    for (int n : m.surface("load").nodes)
+        EXPECT_DOUBLE_EQ(m.nodes(0, n), 1.0);
+}
