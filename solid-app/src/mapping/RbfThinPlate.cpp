@@ -62,8 +62,12 @@ void RbfThinPlate::applyConsistent(const Eigen::Ref<const Values>& sourceValues,
     resizeWorkspace(solution_, n, k);
     rhs_.topRows(sourceSize_) = sourceValues;
     rhs_.bottomRows(n - sourceSize_).setZero();
-    solution_ = lu_.solve(rhs_);
-    targetValues.noalias() = evaluation_ * solution_;
+    // Column by column: vector solves and products need no heap workspace (matrix ones do).
+    for (Eigen::Index j = 0; j < k; ++j)
+    {
+        solution_.col(j) = lu_.solve(rhs_.col(j));
+        targetValues.col(j).noalias() = evaluation_ * solution_.col(j);
+    }
 }
 
 void RbfThinPlate::applyConservative(const Eigen::Ref<const Values>& targetValues,
@@ -73,8 +77,11 @@ void RbfThinPlate::applyConservative(const Eigen::Ref<const Values>& targetValue
     resizeWorkspace(rhs_, n, k);
     resizeWorkspace(solution_, n, k);
     // The saddle-point matrix is symmetric: H^T = R^T A^{-1} E^T.
-    rhs_.noalias() = evaluation_.transpose() * targetValues;
-    solution_ = lu_.solve(rhs_);
+    for (Eigen::Index j = 0; j < k; ++j)
+    {
+        rhs_.col(j).noalias() = evaluation_.transpose() * targetValues.col(j);
+        solution_.col(j) = lu_.solve(rhs_.col(j));
+    }
     sourceValues = solution_.topRows(sourceSize_);
 }
 

@@ -70,7 +70,10 @@ void RbfWendlandC2::compute(const PointCloud& source, const PointCloud& target)
         cg_.compute(system_);
     }
     else
+    {
         ldlt_.compute(system_);
+        diagonal_ = ldlt_.vectorD(); // vectorD() returns a copy: keep it
+    }
     if ((iterative_ ? cg_.info() : ldlt_.info()) != Eigen::Success)
         throw std::runtime_error("mapping rbf-wendland-c2: factorisation of the RBF matrix "
                                  "failed; check for near-duplicate source points or change "
@@ -103,7 +106,13 @@ void RbfWendlandC2::solve(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& solution)
 {
     if (!iterative_)
     {
-        solution = ldlt_.solve(rhs);
+        // ldlt_.solve() spelled out: its last step permutes in place, which allocates a mask.
+        resizeWorkspace(permuted_, rhs.rows(), rhs.cols());
+        permuted_ = ldlt_.permutationP() * rhs;
+        ldlt_.matrixL().solveInPlace(permuted_);
+        permuted_.array().colwise() /= diagonal_.array();
+        ldlt_.matrixU().solveInPlace(permuted_);
+        solution = ldlt_.permutationPinv() * permuted_;
         return;
     }
     lastIterations_ = 0;
@@ -122,16 +131,21 @@ void RbfWendlandC2::solve(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& solution)
 void RbfWendlandC2::applyConsistent(const Eigen::Ref<const Values>& sourceValues,
                                     Eigen::Ref<Values> targetValues) const
 {
+    // Dense products column by column (matrix-vector products need no heap workspace).
     const Eigen::Index k = sourceValues.cols();
     resizeWorkspace(polynomial_, sourceBasis_.cols(), k);
     resizeWorkspace(residual_, sourceSize_, k);
     resizeWorkspace(coefficients_, sourceSize_, k);
-    polynomial_.noalias() = sourceBasis_.transpose() * sourceValues;
     residual_ = sourceValues;
-    residual_.noalias() -= sourceBasis_ * polynomial_;
+    for (Eigen::Index j = 0; j < k; ++j)
+    {
+        polynomial_.col(j).noalias() = sourceBasis_.transpose() * sourceValues.col(j);
+        residual_.col(j).noalias() -= sourceBasis_ * polynomial_.col(j);
+    }
     solve(residual_, coefficients_);
     targetValues.noalias() = evaluation_ * coefficients_;
-    targetValues.noalias() += targetBasis_ * polynomial_;
+    for (Eigen::Index j = 0; j < k; ++j)
+        targetValues.col(j).noalias() += targetBasis_ * polynomial_.col(j);
 }
 
 void RbfWendlandC2::applyConservative(const Eigen::Ref<const Values>& targetValues,
@@ -144,11 +158,14 @@ void RbfWendlandC2::applyConservative(const Eigen::Ref<const Values>& targetValu
     resizeWorkspace(coefficients_, sourceSize_, k);
     residual_.noalias() = evaluation_.transpose() * targetValues;
     solve(residual_, coefficients_);
-    projected_.noalias() = sourceBasis_.transpose() * coefficients_;
-    polynomial_.noalias() = targetBasis_.transpose() * targetValues;
     sourceValues = coefficients_;
-    sourceValues.noalias() -= sourceBasis_ * projected_;
-    sourceValues.noalias() += sourceBasis_ * polynomial_;
+    for (Eigen::Index j = 0; j < k; ++j)
+    {
+        projected_.col(j).noalias() = sourceBasis_.transpose() * coefficients_.col(j);
+        polynomial_.col(j).noalias() = targetBasis_.transpose() * targetValues.col(j);
+        projected_.col(j) -= polynomial_.col(j);
+        sourceValues.col(j).noalias() -= sourceBasis_ * projected_.col(j);
+    }
 }
 
 } // namespace fsi::mapping

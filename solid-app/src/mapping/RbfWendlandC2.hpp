@@ -51,6 +51,7 @@ private:
     bool iterative_ = false;
     Eigen::SparseMatrix<double> system_; // Phi, both triangles (the CG solver refers to it)
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> ldlt_;
+    Eigen::VectorXd diagonal_; // D of the LDLT
     Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper,
                              Eigen::IncompleteCholesky<double>>
         cg_;
@@ -58,7 +59,7 @@ private:
     Eigen::SparseMatrix<double, Eigen::RowMajor> evaluation_; // Phi_ts, N_t x N_s
     Eigen::MatrixXd sourceBasis_, targetBasis_;               // Q (N_s x r), Q_t (N_t x r)
     Eigen::Index systemNonZeros_ = 0;
-    mutable Eigen::MatrixXd coefficients_, residual_, polynomial_, projected_; // workspace
+    mutable Eigen::MatrixXd coefficients_, residual_, polynomial_, projected_, permuted_; // workspace
 };
 
 } // namespace fsi::mapping

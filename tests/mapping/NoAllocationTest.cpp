@@ -1,0 +1,38 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The apply functions are on the hot path: after the first call with a given column count they
+// must not allocate. This target compiles the mapping sources with EIGEN_RUNTIME_NO_MALLOC and
+// assertions on, so any Eigen heap allocation while forbidden aborts the test.
+#include "Clouds.hpp"
+
+#include "mapping/Mapping.hpp"
+
+#include <gtest/gtest.h>
+
+using namespace fsi::mapping;
+using fsi::mapping::test::fluidCylinder;
+using fsi::mapping::test::solidCylinder;
+
+TEST(MappingApply, AllocatesNothingAfterTheFirstCall)
+{
+    const PointCloud s = solidCylinder(24), t = fluidCylinder(24);
+    for (const char* type : {"nearest-neighbour", "rbf-thin-plate", "rbf-wendland-c2"})
+    {
+        MappingParameters p;
+        p.type = type;
+        p.wendland.supportRadius = 0.4;
+        p.wendland.solver = "direct"; // the iterative solver allocates work vectors per solve
+        const auto mapping = buildMapping(p, s, t);
+        const Values u = Values::Ones(s.rows(), 3), g = Values::Ones(t.rows(), 3);
+        Values v(t.rows(), 3), f(s.rows(), 3);
+        mapping->applyConsistent(u, v); // sizes the workspace
+        mapping->applyConservative(g, f);
+        Eigen::internal::set_is_malloc_allowed(false);
+        for (int i = 0; i < 3; ++i)
+        {
+            mapping->applyConsistent(u, v);
+            mapping->applyConservative(g, f);
+        }
+        Eigen::internal::set_is_malloc_allowed(true);
+        EXPECT_NEAR(v(0, 0), 1.0, 1e-12) << type; // constants are reproduced
+    }
+}
