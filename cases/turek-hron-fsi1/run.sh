@@ -16,6 +16,7 @@
 #   --accelerator  override coupling.acceleration.type; --relaxation sets its (initial) omega
 #                  (defaults: aitken 0.5, iqn-ils 0.5, constant 0.5)
 #   --tolerance    coupling.convergence.absolute_tolerance [m] (default: the config's, 1e-8)
+#   --beam NX,NY   override the preset's beam cells along / across the beam (NY even)
 #   --np-fluid     fluid ranks (default 1; > 1 decomposes the fluid mesh, hierarchical)
 #   --timeout      comm timeout of both programs [s] (default 600)
 # Writes log.fluid, log.solid, run.yaml (the config used) and results/: history.csv,
@@ -23,10 +24,10 @@
 # fluid-coupling.csv (fluid-app's per-iteration log), wall_s.
 set -euo pipefail
 here=$(pwd)
-usage() { sed -n '6,25p' "$0" | sed 's/^# \{0,1\}//'; exit "${1:-0}"; }
+usage() { sed -n '6,27p' "$0" | sed 's/^# \{0,1\}//'; exit "${1:-0}"; }
 
 preset=coarse launch=mpmd material=elastic accelerator="" relaxation="" tolerance="" npf=1
-timeout=600 mesh_only=0
+timeout=600 mesh_only=0 beam=
 while [ $# -gt 0 ]; do
   case "$1" in
     --preset) preset=$2; shift 2 ;;
@@ -36,6 +37,7 @@ while [ $# -gt 0 ]; do
     --relaxation) relaxation=$2; shift 2 ;;
     --tolerance) tolerance=$2; shift 2 ;;
     --np-fluid) npf=$2; shift 2 ;;
+    --beam) beam=$2; shift 2 ;;
     --timeout) timeout=$2; shift 2 ;;
     --mesh-only) mesh_only=1; shift ;;
     -h|--help) usage 0 ;;
@@ -50,6 +52,7 @@ case "$preset" in
   fine)   flevel=fine   nx=70 ny=4 ;;
   *) echo "error: run.sh: --preset must be coarse, medium or fine, got '$preset'" >&2; exit 2 ;;
 esac
+if [ -n "$beam" ]; then nx=${beam%,*} ny=${beam#*,}; fi
 case "$launch" in mpmd|port) ;; *) echo "error: run.sh: --launch must be mpmd or port" >&2; exit 2 ;; esac
 case "$material" in
   elastic) config=solid.yaml ;;
