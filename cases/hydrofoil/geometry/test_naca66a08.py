@@ -128,6 +128,19 @@ class SectionAndStl(unittest.TestCase):
         for group in ('"volume"', '"clamped"', '"wetted"'):
             self.assertIn(group, geoText)
 
+    def test_committed_geo_is_current(self):
+        """geometry/foil.geo (defaults, for users without python) matches the generator."""
+        here = os.path.dirname(os.path.abspath(__file__))
+        with tempfile.TemporaryDirectory() as tmp:
+            from contextlib import redirect_stdout
+            import io
+            with redirect_stdout(io.StringIO()):
+                geo.main(["--out", tmp])
+            with open(os.path.join(tmp, "foil.geo")) as f:
+                fresh = f.read()
+        with open(os.path.join(here, "foil.geo")) as f:
+            self.assertEqual(f.read(), fresh, "regenerate geometry/foil.geo with naca66a08.py")
+
     def test_aoa_rotates_about_quarter_chord(self):
         up, lo = geo.section(TC, 0.0, CHORD, aoaDeg=5.0)
         # symmetric section: the nose goes up (+y_s) by 0.25 c sin(5 deg)
