@@ -10,13 +10,13 @@ Description
     from constant/dynamicMeshDict (dynamicMotionSolverFvMesh +
     displacementLaplacian). Coupling settings in system/fsiDict.
 
-    Modes (fsiDict 'mode', or the command-line switches):
+    Modes (fsiDict 'mode', default coupled, or the command-line switches):
       -rigid       no coupling: solve steady to convergence, log and write forces
       -prescribed  prescribed interface motion from fsiDict 'prescribed' (tests)
-      (default)    coupled with solid-app through fsi::comm
+      -coupled     coupled with solid-app through fsi::comm
 
 Usage
-    fluid-app [-rigid | -prescribed] [-parallel] [-case DIR]
+    fluid-app [-rigid | -prescribed | -coupled] [-parallel] [-case DIR]
               [--launch port|mpmd] [--port-file FILE] [--comm-timeout SECONDS]
 \*---------------------------------------------------------------------------*/
 
@@ -40,6 +40,7 @@ int main(int argc, char* argv[])
     );
     argList::addBoolOption("rigid", "Uncoupled: solve steady to convergence and write forces");
     argList::addBoolOption("prescribed", "Prescribed interface motion from system/fsiDict (tests)");
+    argList::addBoolOption("coupled", "Coupled with solid-app through fsi::comm (overrides fsiDict mode)");
 
     #include "setRootCase.H"
     #include "createTime.H"
@@ -59,6 +60,10 @@ int main(int argc, char* argv[])
     if (args.found("prescribed"))
     {
         mode = "prescribed";
+    }
+    if (args.found("coupled"))
+    {
+        mode = "coupled";
     }
 
     // One SIMPLE iteration per time increment (time = iteration counter).
