@@ -139,9 +139,11 @@ int runStandalone(const RunOptions& options)
             std::printf("level %zu  t = %g s  dt = %g s  load factor %g\n", n, step.time, step.dt, factor);
         const auto report = solver.solve(step, {}, factor);
         if (rank == 0)
-            std::printf("  %s in %d Newton iterations (|R| %.3e -> %.3e N), %d factorizations so far\n",
+            std::printf("  %s in %d Newton iterations (|R| %.3e -> %.3e N), %d factorizations so far; "
+                        "assembly %.3f s, linear solver %.3f s\n",
                         report.converged ? "converged" : "NOT converged", report.newtonIterations,
-                        report.initialResidual, report.finalResidual, solver.factorizationCount());
+                        report.initialResidual, report.finalResidual, solver.factorizationCount(),
+                        report.assemblySeconds, report.linearSolveSeconds);
         if (!report.converged) {
             if (rank == 0)
                 std::fprintf(stderr, "error: %s: level %zu (t = %g s) did not converge: %s\n",

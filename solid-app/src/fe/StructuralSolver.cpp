@@ -233,6 +233,13 @@ void StructuralSolver::buildExternalLoads(double factor, const InterfaceLoads& i
 
 bool StructuralSolver::assemble(const std::vector<double>& u, bool withMatrix, std::vector<double>& fint)
 {
+    const double start = MPI_Wtime();
+    struct Timer
+    {
+        double start;
+        double& total;
+        ~Timer() { total += MPI_Wtime() - start; }
+    } timer{start, assemblySeconds_};
     const auto& cells = mesh_.cells;
     fint.assign(numDofs(), 0.0);
     if (withMatrix)
@@ -333,7 +340,9 @@ bool StructuralSolver::newton(const std::vector<double>& fext, double factor, st
             for (int dof = 0; dof < numDofs(); ++dof)
                 if (equation_[dof] >= 0)
                     du[equation_[dof]] = R[dof];
+        const double linearStart = MPI_Wtime();
         linear_->solveSummedRhs(du);
+        linearSeconds_ += MPI_Wtime() - linearStart;
         // line search (energy form, Crisfield): find alpha with s(alpha) = du . R(u + alpha du)
         // small against s(0) = du . R(u) > 0; the residual NORM may grow on a good Newton step
         // (e.g. membrane forces of a bending predictor), so it is not the acceptance test.
@@ -404,9 +413,19 @@ bool StructuralSolver::newton(const std::vector<double>& fext, double factor, st
 SolveReport StructuralSolver::solve(const material::TimeStep& step, const InterfaceLoads& interface,
                                     double loadFactor)
 {
+    SolveReport report = solveLevel(step, interface, loadFactor);
+    report.assemblySeconds = assemblySeconds_;
+    report.linearSolveSeconds = linearSeconds_;
+    return report;
+}
+
+SolveReport StructuralSolver::solveLevel(const material::TimeStep& step, const InterfaceLoads& interface,
+                                         double loadFactor)
+{
     if (!(step.dt >= 0.0))
         throw std::runtime_error("StructuralSolver::solve: dt must be >= 0");
     step_ = step;
+    assemblySeconds_ = linearSeconds_ = 0.0;
     std::vector<double> fTarget;
     buildExternalLoads(loadFactor, interface, fTarget);
     SolveReport report;

@@ -99,6 +99,8 @@ struct SolveReport
     double referenceForce = 0.0;       // [N], the rtol reference
     std::vector<double> residuals;     // per Newton iteration of the successful attempt
     std::string message;               // why it failed / how it converged
+    double assemblySeconds = 0.0;      // wall time in element loops (residual + tangent)
+    double linearSolveSeconds = 0.0;   // wall time in MUMPS (analysis, factorization, solve)
 };
 
 class StructuralSolver
@@ -139,7 +141,7 @@ public:
     int ownedCells() const { return static_cast<int>(ownCells_.size()); }
 
 private:
-    struct Attempt;
+    SolveReport solveLevel(const material::TimeStep& step, const InterfaceLoads& interface, double loadFactor);
     bool assemble(const std::vector<double>& u, bool withMatrix, std::vector<double>& fint);
     void buildExternalLoads(double factor, const InterfaceLoads& interface, std::vector<double>& f) const;
     void applyPrescribed(double factor, std::vector<double>& u) const;
@@ -177,6 +179,8 @@ private:
     double factorCommitted_ = 0.0;
     std::vector<double> fextLast_;
     double factorLast_ = 0.0;
+    double assemblySeconds_ = 0.0;
+    double linearSeconds_ = 0.0;
     bool lastConverged_ = false;
 };
 
