@@ -61,7 +61,10 @@ double relativeError(const Values& got, const Values& want)
 
 // Process CPU time [s]: the code is single-threaded, and CPU time does not depend on how many
 // other jobs share the cores (wall time does).
-double cpuSeconds() { return double(std::clock()) / CLOCKS_PER_SEC; }
+double cpuSeconds()
+{
+    return double(std::clock()) / CLOCKS_PER_SEC;
+}
 
 template <class F> double timePerCall(F&& call)
 {
@@ -112,7 +115,8 @@ try
 
             const Values smooth = field(s, false), linear = field(s, true);
             Values mapped(t.rows(), 3), back(s.rows(), 3);
-            const double consistent = timePerCall([&] { mapping->applyConsistent(smooth, mapped); });
+            const double consistent =
+                timePerCall([&] { mapping->applyConsistent(smooth, mapped); });
             const double smoothError = relativeError(mapped, field(t, false));
             mapping->applyConsistent(linear, mapped);
             const double linearError = relativeError(mapped, field(t, true));

@@ -39,10 +39,7 @@ std::string validationMessage(const AcceleratorParameters& p)
 struct ScalarProblem
 {
     double a, b;
-    Eigen::VectorXd solve(const Eigen::VectorXd& u) const
-    {
-        return (a * u.array() + b).matrix();
-    }
+    Eigen::VectorXd solve(const Eigen::VectorXd& u) const { return (a * u.array() + b).matrix(); }
 };
 } // namespace
 
@@ -67,8 +64,7 @@ TEST(Aitken, ConvergesWhereThePlainIterationDiverges)
                 aitken.lastRelaxation());
     ASSERT_TRUE(result.converged);
     EXPECT_LE(result.solverCalls, 45);
-    EXPECT_LT((result.solution - problem.fixedPoint()).norm() / problem.fixedPoint().norm(),
-              1e-10);
+    EXPECT_LT((result.solution - problem.fixedPoint()).norm() / problem.fixedPoint().norm(), 1e-10);
 }
 
 TEST(Aitken, FollowsEquationTenExactly)

@@ -101,7 +101,7 @@ TEST(QrFilter, DropsADuplicatedColumnAndKeepsTheNewest)
     Eigen::MatrixXd v(5, 4);
     v.col(0) << 1, 2, 0, -1, 3;
     v.col(1) << 0, 1, 1, 2, -1;
-    v.col(2) = v.col(0);                         // duplicate of the newest
+    v.col(2) = v.col(0);                          // duplicate of the newest
     v.col(3) = 2.0 * v.col(1) + 1e-15 * v.col(0); // dependent to round-off
     for (QrFilterKind kind : {QrFilterKind::Column, QrFilterKind::Matrix})
     {

@@ -20,14 +20,16 @@ inline PointCloud cylinder(int nTheta, int nZ, double thetaShift, double zLo, do
         {
             const double theta = 2.0 * pi * (i + thetaShift) / nTheta;
             const double z = nZ == 1 ? zLo : zLo + (zHi - zLo) * j / (nZ - 1);
-            p.row(j * nTheta + i) << 1.0 + 0.5 * std::cos(theta), -2.0 + 0.5 * std::sin(theta),
-                z;
+            p.row(j * nTheta + i) << 1.0 + 0.5 * std::cos(theta), -2.0 + 0.5 * std::sin(theta), z;
         }
     return p;
 }
 
 // Solid side: nTheta x nTheta/2 nodes, ends included.
-inline PointCloud solidCylinder(int nTheta) { return cylinder(nTheta, nTheta / 2 + 1, 0.0, 0.0, 1.0); }
+inline PointCloud solidCylinder(int nTheta)
+{
+    return cylinder(nTheta, nTheta / 2 + 1, 0.0, 0.0, 1.0);
+}
 
 // Fluid side: a different sampling, 1.5x denser, rotated by 0.37 of its step, axially at
 // the centres of 3 nTheta / 4 equal cells (faces centres-like). Pre: nTheta multiple of 4.

@@ -71,8 +71,8 @@ TEST_P(RbfMapping, ReproducesLinearFieldsOnNonMatchingCylinders)
     Values mapped(t.rows(), 3);
     mapping->applyConsistent(linearField(s), mapped);
     const double error = relativeMaxError(mapped, linearField(t));
-    std::printf("%s: %ld -> %ld points, linear field relative max error %.2e\n",
-                GetParam().c_str(), long(s.rows()), long(t.rows()), error);
+    std::printf("%s: %ld -> %ld points, linear field relative max error %.2e\n", GetParam().c_str(),
+                long(s.rows()), long(t.rows()), error);
     EXPECT_LT(error, 1e-10);
 }
 
@@ -120,8 +120,7 @@ TEST_P(RbfMapping, ConservativeIsTransposeOfConsistent)
     EXPECT_NEAR(lhs, rhs, 1e-12 * (std::abs(lhs) + hu.norm() * g.norm()));
 }
 
-INSTANTIATE_TEST_SUITE_P(Kinds, RbfMapping,
-                         ::testing::Values("rbf-thin-plate", "rbf-wendland-c2"),
+INSTANTIATE_TEST_SUITE_P(Kinds, RbfMapping, ::testing::Values("rbf-thin-plate", "rbf-wendland-c2"),
                          [](const auto& info) {
                              return info.param == "rbf-thin-plate" ? std::string("ThinPlate")
                                                                    : std::string("WendlandC2");
@@ -214,7 +213,8 @@ TEST(MappingApply, RepeatedAndMultiColumnCallsAgree)
 
 TEST(MappingParameters, RejectsBadInputWithOneLineMessages)
 {
-    const auto message = [](const MappingParameters& p) {
+    const auto message = [](const MappingParameters& p)
+    {
         try
         {
             p.validate();

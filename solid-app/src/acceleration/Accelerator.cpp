@@ -13,7 +13,10 @@ namespace fsi::acceleration
 
 namespace
 {
-std::string str(double x) { return std::isnan(x) ? std::string("unset") : std::to_string(x); }
+std::string str(double x)
+{
+    return std::isnan(x) ? std::string("unset") : std::to_string(x);
+}
 
 void checkInitialRelaxation(double omega, const char* key)
 {
@@ -35,7 +38,8 @@ void ConstantParameters::validate() const
 {
     if (!(relaxation > 0.0 && relaxation < 2.0))
         throw std::runtime_error("acceleration.relaxation must be in (0, 2) for type constant "
-                                 "(got " + str(relaxation) + "); set it, e.g. 0.5");
+                                 "(got " +
+                                 str(relaxation) + "); set it, e.g. 0.5");
 }
 
 void AitkenParameters::validate() const
@@ -49,7 +53,8 @@ void AitkenParameters::validate() const
                                  str(maxRelaxation) + "); e.g. 1");
     if (!(minRelaxation > 0.0 && minRelaxation <= maxRelaxation))
         throw std::runtime_error("acceleration.min_relaxation must be in (0, max_relaxation] "
-                                 "(got " + str(minRelaxation) + "); e.g. 1e-3");
+                                 "(got " +
+                                 str(minRelaxation) + "); e.g. 1e-3");
     if (initialRelaxation > maxRelaxation)
         throw std::runtime_error("acceleration.initial_relaxation " + str(initialRelaxation) +
                                  " exceeds max_relaxation " + str(maxRelaxation) +
@@ -96,8 +101,7 @@ std::unique_ptr<Accelerator> makeAccelerator(const AcceleratorParameters& params
     return std::make_unique<IqnIls>(params.iqnIls);
 }
 
-ConstantRelaxation::ConstantRelaxation(const ConstantParameters& params)
-    : omega_(params.relaxation)
+ConstantRelaxation::ConstantRelaxation(const ConstantParameters& params) : omega_(params.relaxation)
 {
     params.validate();
 }

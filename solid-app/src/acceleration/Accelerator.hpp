@@ -19,8 +19,8 @@ namespace fsi::acceleration
 // What a strategy carries between levels, for restart. Plain data, written by the io layer.
 struct AcceleratorState
 {
-    std::string type;          // keyword of the strategy that wrote it
-    std::vector<long> sizes;   // strategy-specific layout (see each strategy)
+    std::string type;        // keyword of the strategy that wrote it
+    std::vector<long> sizes; // strategy-specific layout (see each strategy)
     std::vector<double> values;
 };
 
@@ -84,9 +84,9 @@ struct AitkenParameters
 struct IqnIlsParameters
 {
     double initialRelaxation = std::numeric_limits<double>::quiet_NaN(); // omega_0, required
-    int maxColumns = 100;        // cap on columns (current + reused), oldest dropped first
-    int reuseLevels = 0;         // converged levels whose columns are reused (0 = none)
-    double filterTolerance = 1e-3; // QR filter epsilon, see QrFilter.hpp
+    int maxColumns = 100;             // cap on columns (current + reused), oldest dropped first
+    int reuseLevels = 0;              // converged levels whose columns are reused (0 = none)
+    double filterTolerance = 1e-3;    // QR filter epsilon, see QrFilter.hpp
     std::string filter = "qr-column"; // "qr-column" (|R_ii| < eps |v_i|) | "qr-matrix" (eps ||R||)
     void validate() const;
 };

@@ -75,9 +75,15 @@ Eigen::VectorXd Aitken::update(const Eigen::VectorXd& previousIterate,
     return previousIterate + omega_ * previousResidual_;
 }
 
-void Aitken::endLevel() { levelOmega_ = omega_; }
+void Aitken::endLevel()
+{
+    levelOmega_ = omega_;
+}
 
-AcceleratorState Aitken::saveState() const { return {name(), {1}, {levelOmega_}}; }
+AcceleratorState Aitken::saveState() const
+{
+    return {name(), {1}, {levelOmega_}};
+}
 
 void Aitken::loadState(const AcceleratorState& state)
 {

@@ -3,7 +3,8 @@
 // aitken: dynamic relaxation by Aitken's delta^2 method, the paper's eq. 10. With the residual
 // of this update r_new = u_hat_i - u_{i-1}, the previous one r_prev and the previous factor
 // omega_prev (paper: r_{i+1}, r_i, omega_{i-1}):
-//   omega = -omega_prev r_prev^T (r_new - r_prev) / |r_new - r_prev|^2,  u_i = u_{i-1} + omega r_new
+//   omega = -omega_prev r_prev^T (r_new - r_prev) / |r_new - r_prev|^2,  u_i = u_{i-1} + omega
+//   r_new
 // First update of a level: "reset" uses omega_0; "carry-over" uses the last omega of the
 // previous converged level clamped to [min_relaxation, max_relaxation] (omega_0 on the first
 // level). Every omega is clamped to min_relaxation <= |omega| <= max_relaxation, sign kept.

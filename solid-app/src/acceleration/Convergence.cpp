@@ -12,9 +12,10 @@ namespace fsi::acceleration
 void ConvergenceParameters::validate() const
 {
     if (!(absoluteTolerance >= 0.0) || !(relativeTolerance >= 0.0))
-        throw std::runtime_error("coupling convergence tolerances must be >= 0 (absolute_tolerance "
-                                 + std::to_string(absoluteTolerance) + ", relative_tolerance " +
-                                 std::to_string(relativeTolerance) + ")");
+        throw std::runtime_error(
+            "coupling convergence tolerances must be >= 0 (absolute_tolerance " +
+            std::to_string(absoluteTolerance) + ", relative_tolerance " +
+            std::to_string(relativeTolerance) + ")");
     if (!(absoluteTolerance > 0.0) && !(relativeTolerance > 0.0))
         throw std::runtime_error("coupling convergence needs absolute_tolerance (|r|/sqrt(n) in m, "
                                  "e.g. 1e-8) or relative_tolerance (e.g. 1e-5) > 0");
@@ -38,7 +39,7 @@ ConvergenceMeasure measureConvergence(const Eigen::VectorXd& previousIterate,
     const double residualNorm = (solverOutput - previousIterate).norm();
     const double outputNorm = solverOutput.norm();
     m.rmsResidual = residualNorm / std::sqrt(n);
-    m.relativeResidual = outputNorm > 0.0 ? residualNorm / outputNorm
+    m.relativeResidual = outputNorm > 0.0     ? residualNorm / outputNorm
                          : residualNorm > 0.0 ? std::numeric_limits<double>::infinity()
                                               : 0.0;
     m.finite = std::isfinite(residualNorm) && std::isfinite(outputNorm);

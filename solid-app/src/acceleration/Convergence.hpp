@@ -26,8 +26,8 @@ struct ConvergenceMeasure
     double rmsResidual = 0.0;      // |r| / sqrt(n)
     double relativeResidual = 0.0; // |r| / |u_hat| (inf when u_hat = 0 and r != 0)
     bool converged = false;
-    bool finite = true;            // false when r has NaN/inf: the driver stops the level
-    std::string toString() const;  // "|r|/sqrt(n) 1.2e-07 |r|/|u| 3.4e-05 converged"
+    bool finite = true;           // false when r has NaN/inf: the driver stops the level
+    std::string toString() const; // "|r|/sqrt(n) 1.2e-07 |r|/|u| 3.4e-05 converged"
 };
 
 // Pre: vectors of the same non-zero length.

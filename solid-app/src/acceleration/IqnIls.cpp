@@ -131,7 +131,8 @@ AcceleratorState IqnIls::saveState() const
 void IqnIls::loadState(const AcceleratorState& state)
 {
     checkStateType(state);
-    const auto damaged = [](const std::string& what) {
+    const auto damaged = [](const std::string& what)
+    {
         return std::runtime_error("acceleration: iqn-ils restart state " + what +
                                   "; the restart file is damaged or from another version");
     };

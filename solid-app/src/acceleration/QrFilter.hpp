@@ -23,10 +23,10 @@ enum class QrFilterKind
 
 struct FilteredQr
 {
-    Eigen::MatrixXd q;         // n x m_kept, orthonormal columns
-    Eigen::MatrixXd r;         // m_kept x m_kept, upper triangular, non-zero diagonal
-    std::vector<int> kept;     // indices into the input columns, increasing
-    std::vector<int> dropped;  // indices into the input columns, increasing
+    Eigen::MatrixXd q;        // n x m_kept, orthonormal columns
+    Eigen::MatrixXd r;        // m_kept x m_kept, upper triangular, non-zero diagonal
+    std::vector<int> kept;    // indices into the input columns, increasing
+    std::vector<int> dropped; // indices into the input columns, increasing
 };
 
 FilteredQr filteredQr(const Eigen::MatrixXd& columns, double eps, QrFilterKind kind);

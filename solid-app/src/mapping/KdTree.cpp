@@ -40,13 +40,16 @@ KdTree::KdTree(const PointCloud& points) : impl_(std::make_unique<Impl>())
         throw std::runtime_error("mapping: kd-tree of an empty point cloud");
     impl_->points = points;
     impl_->adaptor.points = &impl_->points;
-    impl_->tree = std::make_unique<Tree>(3, impl_->adaptor,
-                                         nanoflann::KDTreeSingleIndexAdaptorParams(16));
+    impl_->tree =
+        std::make_unique<Tree>(3, impl_->adaptor, nanoflann::KDTreeSingleIndexAdaptorParams(16));
 }
 
 KdTree::~KdTree() = default;
 
-Eigen::Index KdTree::size() const { return impl_->points.rows(); }
+Eigen::Index KdTree::size() const
+{
+    return impl_->points.rows();
+}
 
 Eigen::Index KdTree::nearest(const double* q, double* distance) const
 {

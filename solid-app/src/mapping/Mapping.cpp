@@ -16,7 +16,8 @@ void WendlandParameters::validate() const
 {
     if (!(supportRadius > 0.0) || !std::isfinite(supportRadius))
         throw std::runtime_error("mapping.support_radius must be > 0 m for type rbf-wendland-c2 "
-                                 "(got " + std::to_string(supportRadius) +
+                                 "(got " +
+                                 std::to_string(supportRadius) +
                                  "); set it to a few solid node spacings");
     if (solver != "auto" && solver != "direct" && solver != "iterative")
         throw std::runtime_error("mapping.solver '" + solver +
@@ -33,7 +34,8 @@ void ThinPlateParameters::validate() const
 {
     if (maxSourcePoints < 1)
         throw std::runtime_error("mapping.max_source_points must be >= 1 for type "
-                                 "rbf-thin-plate (got " + std::to_string(maxSourcePoints) + ")");
+                                 "rbf-thin-plate (got " +
+                                 std::to_string(maxSourcePoints) + ")");
 }
 
 void MappingParameters::validate() const
@@ -43,7 +45,8 @@ void MappingParameters::validate() const
     else if (type == "rbf-thin-plate")
         thinPlate.validate();
     else if (type != "nearest-neighbour")
-        throw std::runtime_error("mapping.type '" + type + "' is unknown; use one of "
+        throw std::runtime_error("mapping.type '" + type +
+                                 "' is unknown; use one of "
                                  "nearest-neighbour, rbf-thin-plate, rbf-wendland-c2");
     if (!(overlapTolerance > 0.0) || !std::isfinite(overlapTolerance))
         throw std::runtime_error("mapping.overlap_tolerance must be > 0 (relative to the "

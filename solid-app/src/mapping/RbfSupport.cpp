@@ -65,9 +65,8 @@ void checkDistinctPoints(const PointCloud& source, const char* mappingName)
         if (distance[1] <= 1e-12 * size)
         {
             const Eigen::Index j = index[0] == i ? index[1] : index[0];
-            throw std::runtime_error(std::string("mapping ") + mappingName +
-                                     ": source points " + std::to_string(i) + " and " +
-                                     std::to_string(j) +
+            throw std::runtime_error(std::string("mapping ") + mappingName + ": source points " +
+                                     std::to_string(i) + " and " + std::to_string(j) +
                                      " coincide; merge duplicate wetted nodes or use type "
                                      "nearest-neighbour");
         }

@@ -12,7 +12,10 @@ namespace fsi::mapping
 
 namespace
 {
-inline double thinPlate(double r) { return r > 0.0 ? r * r * std::log(r) : 0.0; }
+inline double thinPlate(double r)
+{
+    return r > 0.0 ? r * r * std::log(r) : 0.0;
+}
 
 void fillKernel(const PointCloud& rows, const PointCloud& cols, Eigen::Ref<Eigen::MatrixXd> out)
 {

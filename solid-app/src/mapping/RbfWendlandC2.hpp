@@ -59,7 +59,8 @@ private:
     Eigen::SparseMatrix<double, Eigen::RowMajor> evaluation_; // Phi_ts, N_t x N_s
     Eigen::MatrixXd sourceBasis_, targetBasis_;               // Q (N_s x r), Q_t (N_t x r)
     Eigen::Index systemNonZeros_ = 0;
-    mutable Eigen::MatrixXd coefficients_, residual_, polynomial_, projected_, permuted_; // workspace
+    mutable Eigen::MatrixXd coefficients_, residual_, polynomial_, projected_,
+        permuted_; // workspace
 };
 
 } // namespace fsi::mapping
