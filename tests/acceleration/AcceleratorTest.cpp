@@ -193,3 +193,24 @@ TEST(AcceleratorParameters, RejectsBadInputWithOneLineMessages)
     p.constant.relaxation = 0.7;
     EXPECT_EQ(makeAccelerator(p)->name(), "constant");
 }
+
+TEST(AcceleratorSizes, AChangedInterfaceWithinALevelIsRefused)
+{
+    AcceleratorParameters p;
+    p.type = "iqn-ils";
+    p.iqnIls.initialRelaxation = 0.5;
+    for (const char* type : {"aitken", "iqn-ils"})
+    {
+        p.type = type;
+        p.aitken.initialRelaxation = 0.5;
+        const auto accelerator = makeAccelerator(p);
+        accelerator->beginLevel();
+        accelerator->update(Eigen::VectorXd::Zero(3), Eigen::VectorXd::Ones(3));
+        EXPECT_THROW(accelerator->update(Eigen::VectorXd::Zero(4), Eigen::VectorXd::Ones(4)),
+                     std::runtime_error)
+            << type;
+        EXPECT_THROW(accelerator->update(Eigen::VectorXd::Zero(3), Eigen::VectorXd::Ones(2)),
+                     std::runtime_error)
+            << type;
+    }
+}

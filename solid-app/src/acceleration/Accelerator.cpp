@@ -34,6 +34,18 @@ void Accelerator::checkStateType(const AcceleratorState& state) const
                                  "'; use the same type or start without the accelerator state");
 }
 
+void Accelerator::checkSizes(const Eigen::VectorXd& previousIterate,
+                             const Eigen::VectorXd& solverOutput, Eigen::Index expected) const
+{
+    if (previousIterate.size() != solverOutput.size() ||
+        (expected >= 0 && previousIterate.size() != expected) || previousIterate.size() == 0)
+        throw std::runtime_error("acceleration " + name() + ": interface vector sizes differ (" +
+                                 std::to_string(previousIterate.size()) + " sent, " +
+                                 std::to_string(solverOutput.size()) + " returned, " +
+                                 std::to_string(expected) +
+                                 " in this level); the interface must not change within a level");
+}
+
 void ConstantParameters::validate() const
 {
     if (!(relaxation > 0.0 && relaxation < 2.0))
@@ -109,6 +121,7 @@ ConstantRelaxation::ConstantRelaxation(const ConstantParameters& params) : omega
 Eigen::VectorXd ConstantRelaxation::update(const Eigen::VectorXd& previousIterate,
                                            const Eigen::VectorXd& solverOutput)
 {
+    checkSizes(previousIterate, solverOutput, -1);
     return previousIterate + omega_ * (solverOutput - previousIterate);
 }
 

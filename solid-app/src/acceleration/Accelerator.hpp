@@ -60,6 +60,9 @@ public:
 
 protected:
     void checkStateType(const AcceleratorState& state) const;
+    // Throws when the two vectors differ in length or expected (>= 0) is not their length.
+    void checkSizes(const Eigen::VectorXd& previousIterate, const Eigen::VectorXd& solverOutput,
+                    Eigen::Index expected) const;
     std::string note_;
 };
 

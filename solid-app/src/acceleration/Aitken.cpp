@@ -45,6 +45,7 @@ Eigen::VectorXd Aitken::update(const Eigen::VectorXd& previousIterate,
                                const Eigen::VectorXd& solverOutput)
 {
     note_.clear();
+    checkSizes(previousIterate, solverOutput, iteration_ > 0 ? previousResidual_.size() : -1);
     Eigen::VectorXd residual = solverOutput - previousIterate;
     if (iteration_ == 0)
     {

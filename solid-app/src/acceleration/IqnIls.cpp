@@ -25,6 +25,7 @@ Eigen::VectorXd IqnIls::update(const Eigen::VectorXd& previousIterate,
                                const Eigen::VectorXd& solverOutput)
 {
     note_.clear();
+    checkSizes(previousIterate, solverOutput, iteration_ > 0 ? previousResidual_.size() : -1);
     const Eigen::Index n = previousIterate.size();
     if (!past_.empty() && past_.front().v.rows() != n)
         throw std::runtime_error("acceleration iqn-ils: interface size changed from " +
