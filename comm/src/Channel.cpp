@@ -114,16 +114,29 @@ void sendRaw(MPI_Comm inter, const Message& message, std::int32_t version, doubl
     const EncodedHeader words = encodeHeader(header);
     const std::vector<char> payload = encodePayload(message);
     const std::string what = "sending " + toString(message.kind) + " to " + peerName;
+    auto wait = [&](MPI_Request& request)
+    {
+        try
+        {
+            waitBounded(request, timeout, what);
+        }
+        catch (const TimeoutError&)
+        {
+            // Even a small (eager) send can stay incomplete when the peer's connection broke.
+            throw TimeoutError("fsi::comm: " + what + ": not taken within " + seconds(timeout) +
+                               "; the peer exited, crashed or hangs");
+        }
+    };
     MPI_Request request = MPI_REQUEST_NULL;
     checkMpi(MPI_Isend(words.data(), kHeaderWords, MPI_INT64_T, 0, kTagHeader, inter, &request),
              what);
-    waitBounded(request, timeout, what + " (the peer exited, crashed or hangs)");
+    wait(request);
     if (!payload.empty())
     {
         checkMpi(MPI_Isend(payload.data(), static_cast<int>(payload.size()), MPI_CHAR, 0,
                            kTagPayload, inter, &request),
                  what);
-        waitBounded(request, timeout, what + " (the peer exited, crashed or hangs)");
+        wait(request);
     }
 }
 
