@@ -77,6 +77,30 @@ TEST(PatchTest, LinearFieldExactConstantStress)
         std::printf("patch test %-6s %4d cells: max |u - u_exact| = %.2e m, max stress error %.2e\n",
                     fsi::testing::testCellName(cell), m.cells.size(), err, stressErr);
     }
+    for (int q : {0, 15, 18}) {
+        const auto file = fsi::testing::makePrismBlock(fsi::testing::tempFile("prisms.msh"), q);
+        const mesh::Mesh m = mesh::readGmsh(file, {"solid", {"boundary"}}, true);
+        fe::ProblemDefinition p;
+        fe::PrescribedDisplacement d;
+        d.surface = "boundary";
+        d.field = [&](const Eigen::Vector3d& X, double f) -> Eigen::Vector3d { return f * (A * X + offset); };
+        p.displacements.push_back(d);
+        fe::StructuralSolver solver(MPI_COMM_WORLD, m, *law, p);
+        ASSERT_TRUE(solver.solve({0.0, 0.0}).converged);
+        double err = 0.0;
+        for (int node = 0; node < m.numNodes(); ++node)
+            for (int i = 0; i < 3; ++i)
+                err = std::max(err, std::abs(solver.displacement()[3 * node + i] - (A * m.nodes.col(node) + offset)[i]));
+        std::vector<material::Vector6> nodal, cells;
+        solver.cauchyStress(nodal, cells);
+        double stressErr = 0.0;
+        for (const auto& s : nodal)
+            stressErr = std::max(stressErr, (s - sigma).norm() / sigma.norm());
+        std::printf("patch test Prism%-2d %4d cells: max |u - u_exact| = %.2e m, max stress error %.2e\n",
+                    q ? q : 6, m.cells.size(), err, stressErr);
+        EXPECT_LT(err, 1e-12);
+        EXPECT_LT(stressErr, 1e-9);
+    }
 }
 
 // Rigid translation + infinitesimal rotation (small strain) and a finite 90-degree rotation

@@ -116,3 +116,35 @@ TEST(VtuWriter, PvdAndCsv)
     EXPECT_NEAR(io::vonMisesStress((io::Vector6() << 1, 0, 0, 0, 0, 0).finished()), 1.0, 1e-15);
     EXPECT_NEAR(io::vonMisesStress((io::Vector6() << 0, 0, 0, 1, 0, 0).finished()), std::sqrt(3.0), 1e-15);
 }
+
+// Prisms: VTK wedge types, corners (0, 1, 2) with the right-hand normal pointing away from
+// (3, 4, 5) as VTK defines it, mid-edge / mid-face nodes at their VTK-defined positions. The
+// ASCII file is parsed directly (meshio 5 reorders wedges and cannot read wedge15 from VTU).
+TEST(VtuWriter, PrismsAsVtkWedges)
+{
+    if (std::system("/usr/bin/python3 -c 'import numpy' > /dev/null 2>&1") != 0)
+        GTEST_SKIP() << "numpy not available";
+    const std::string script =
+        "import sys, xml.etree.ElementTree as ET\nimport numpy as np\n"
+        "a={d.get('Name'):np.array(d.text.split(),dtype=float) for d in ET.parse(sys.argv[1]).iter('DataArray')}\n"
+        "x=a['Points'].reshape(-1,3); conn=a['connectivity'].astype(int); off=a['offsets'].astype(int); types=a['types'].astype(int)\n"
+        "E=[(0,1),(1,2),(2,0),(3,4),(4,5),(5,3),(0,3),(1,4),(2,5),(0,1,4,3),(1,2,5,4),(2,0,3,5)]\n"
+        "bad=0; start=0\n"
+        "for end in off:\n"
+        "  p=x[conn[start:end]]; start=end\n"
+        "  if np.dot(np.cross(p[1]-p[0],p[2]-p[0]),p[3]-p[0])>=0: bad+=1\n"
+        "  for k in range(6,len(p)):\n"
+        "    if np.abs(p[k]-p[list(E[k-6])].mean(axis=0)).max()>1e-9: bad+=1\n"
+        "print('type', types[0], len(off), 'bad=%d'%bad)\n";
+    std::ofstream(tempDir() / "wedge.py") << script;
+    for (int q : {0, 15, 18}) {
+        const auto file = fsi::testing::makePrismBlock((tempDir() / "p.msh").string(), q);
+        const mesh::Mesh m = mesh::readGmsh(file, {"solid", {}}, true);
+        const auto vtu = tempDir() / ("wedge" + std::to_string(q) + ".vtu");
+        io::writeVtu(vtu.string(), m, {}, false);
+        const std::string out = run("/usr/bin/python3 " + (tempDir() / "wedge.py").string() + " " + vtu.string() + " 2>&1");
+        const std::string type = q == 0 ? "type 13 " : q == 15 ? "type 26 " : "type 32 ";
+        EXPECT_EQ(out.rfind(type, 0), 0u) << out;
+        EXPECT_NE(out.find("bad=0"), std::string::npos) << out;
+    }
+}

@@ -91,6 +91,45 @@ inline std::string makeBlockMesh(const std::string& path, TestCell cell, const B
     return path;
 }
 
+// Unit cube of prisms: the triangulated bottom face extruded in n layers. Groups as above.
+// quadratic: 0 (Prism6), 15 (Prism15) or 18 (Prism18).
+inline std::string makePrismBlock(const std::string& path, int quadratic, int n = 2)
+{
+    gmsh::initialize(0, nullptr, false);
+    gmsh::option::setNumber("General.Terminal", 0);
+    gmsh::model::add("prisms");
+    const int p0 = gmsh::model::geo::addPoint(0, 0, 0), p1 = gmsh::model::geo::addPoint(1, 0, 0),
+              p2 = gmsh::model::geo::addPoint(1, 1, 0), p3 = gmsh::model::geo::addPoint(0, 1, 0);
+    const std::vector<int> l = {gmsh::model::geo::addLine(p0, p1), gmsh::model::geo::addLine(p1, p2),
+                                gmsh::model::geo::addLine(p2, p3), gmsh::model::geo::addLine(p3, p0)};
+    const int s = gmsh::model::geo::addPlaneSurface({gmsh::model::geo::addCurveLoop(l)});
+    gmsh::model::geo::mesh::setSize({{0, p0}, {0, p1}, {0, p2}, {0, p3}}, 1.0 / n);
+    gmsh::vectorpair out;
+    gmsh::model::geo::extrude({{2, s}}, 0, 0, 1, out, {n}, {}, true);
+    gmsh::model::geo::synchronize();
+    // out: top, volume, sides of l[0..3] (y0, x1, y1, x0)
+    gmsh::model::addPhysicalGroup(3, {out[1].second}, 1);
+    gmsh::model::setPhysicalName(3, 1, "solid");
+    const std::vector<std::pair<std::string, int>> faces = {{"z0", s}, {"z1", out[0].second}, {"y0", out[2].second},
+                                                            {"x1", out[3].second}, {"y1", out[4].second}, {"x0", out[5].second}};
+    std::vector<int> all;
+    int tag = 10;
+    for (const auto& [name, id] : faces) {
+        gmsh::model::addPhysicalGroup(2, {id}, tag);
+        gmsh::model::setPhysicalName(2, tag++, name);
+        all.push_back(id);
+    }
+    gmsh::model::addPhysicalGroup(2, all, 20);
+    gmsh::model::setPhysicalName(2, 20, "boundary");
+    gmsh::option::setNumber("Mesh.SecondOrderIncomplete", quadratic == 15 ? 1 : 0);
+    gmsh::model::mesh::generate(3);
+    if (quadratic)
+        gmsh::model::mesh::setOrder(2);
+    gmsh::write(path);
+    gmsh::finalize();
+    return path;
+}
+
 inline const char* testCellName(TestCell c)
 {
     static const char* n[] = {"Tet4", "Tet10", "Hex8", "Hex20", "Hex27"};

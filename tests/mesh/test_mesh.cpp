@@ -33,7 +33,7 @@ std::string errorOf(const std::function<void()>& f)
 TEST(ReferenceElement, MatchesGmshAndIsNodal)
 {
     gmsh::initialize(0, nullptr, false);
-    for (int gmshType : {2, 9, 3, 16, 10, 4, 11, 5, 17, 12}) {
+    for (int gmshType : {2, 9, 3, 16, 10, 4, 11, 5, 17, 12, 6, 18, 13}) {
         mesh::CellType type;
         ASSERT_TRUE(mesh::cellTypeFromGmsh(gmshType, type));
         const auto& ref = mesh::ReferenceElement::get(type);
@@ -132,4 +132,14 @@ TEST(ConvertMesh, AbaqusInpKeepsGroups)
         EXPECT_DOUBLE_EQ(m.nodes(0, n), 0.0);
     for (int n : m.surface("load").nodes)
         EXPECT_DOUBLE_EQ(m.nodes(0, n), 1.0);
+}
+
+TEST(GmshReader, Prisms)
+{
+    for (int q : {0, 15, 18}) {
+        const std::string file = fsi::testing::makePrismBlock(tempPath("prisms.msh"), q);
+        const mesh::Mesh m = mesh::readGmsh(file, {"solid", {"x0", "boundary"}}, true);
+        const std::string name = q == 0 ? "Prism6" : q == 15 ? "Prism15" : "Prism18";
+        EXPECT_GT(m.cellTypeCounts().at(name), 0) << name;
+    }
 }

@@ -56,14 +56,36 @@ Rule tri()
             {Eigen::Vector3d(1.0 / 6, 2.0 / 3, 0), 1.0 / 6}};
 }
 
+// 7-point degree-5 rule on the reference triangle (weights sum to 1/2).
+Rule tri7()
+{
+    const double r = std::sqrt(15.0);
+    const double a1 = (6 - r) / 21, a2 = (6 + r) / 21, w1 = (155 - r) / 2400, w2 = (155 + r) / 2400;
+    return {{Eigen::Vector3d(1.0 / 3, 1.0 / 3, 0), 9.0 / 80},
+            {Eigen::Vector3d(a1, a1, 0), w1}, {Eigen::Vector3d(1 - 2 * a1, a1, 0), w1}, {Eigen::Vector3d(a1, 1 - 2 * a1, 0), w1},
+            {Eigen::Vector3d(a2, a2, 0), w2}, {Eigen::Vector3d(1 - 2 * a2, a2, 0), w2}, {Eigen::Vector3d(a2, 1 - 2 * a2, 0), w2}};
+}
+
+// triangle rule x Gauss line in w
+Rule prism(const Rule& triangle, int linePoints)
+{
+    std::vector<double> w;
+    const Rule line = gaussLine(linePoints, w);
+    Rule r;
+    for (std::size_t k = 0; k < line.size(); ++k)
+        for (const auto& t : triangle)
+            r.push_back({Eigen::Vector3d(t.xi[0], t.xi[1], line[k].xi[0]), t.weight * w[k]});
+    return r;
+}
+
 } // namespace
 
 const std::vector<QuadraturePoint>& quadrature(mesh::CellType type)
 {
     using mesh::CellType;
-    static const std::array<Rule, 10> rules = {tet(1),      tet(4),      tensor(2, 3), tensor(2, 3),
-                                               tensor(3, 3), tri(),       tri(),        tensor(2, 2),
-                                               tensor(3, 2), tensor(3, 2)};
+    static const std::array<Rule, mesh::numCellTypes> rules = {
+        tet(1),       tet(4), tensor(2, 3), tensor(2, 3), tensor(3, 3), tri(), tri(), tensor(2, 2),
+        tensor(3, 2), tensor(3, 2), prism(tri(), 2), prism(tri7(), 3), prism(tri7(), 3)};
     return rules[static_cast<int>(type)];
 }
 

@@ -15,6 +15,33 @@ namespace {
 
 using mesh::CellType;
 
+// VTK wedges: corners (c0, c1, c2) with the right-hand normal pointing AWAY from (c3, c4, c5),
+// i.e. Gmsh's (0, 2, 1, 3, 5, 4); then mid-edges and quad-face centres defined by VTK corners.
+// Each VTK node is found in the Gmsh table by its reference position (mean of its corners).
+std::vector<int> prismOrder(CellType t)
+{
+    const int corner[6] = {0, 2, 1, 3, 5, 4};
+    const std::vector<std::vector<int>> vtk = {{0}, {1}, {2}, {3}, {4}, {5},
+                                               {0, 1}, {1, 2}, {2, 0}, {3, 4}, {4, 5}, {5, 3},
+                                               {0, 3}, {1, 4}, {2, 5},
+                                               {0, 1, 4, 3}, {1, 2, 5, 4}, {2, 0, 3, 5}};
+    const auto& ref = mesh::ReferenceElement::get(t);
+    std::vector<int> order;
+    for (int k = 0; k < ref.numNodes(); ++k) {
+        Eigen::Vector3d x = Eigen::Vector3d::Zero();
+        for (int c : vtk[k])
+            x += ref.node(corner[c]) / static_cast<double>(vtk[k].size());
+        int found = -1;
+        for (int a = 0; a < ref.numNodes(); ++a)
+            if ((ref.node(a) - x).norm() < 1e-12)
+                found = a;
+        if (found < 0)
+            throw std::logic_error("writeVtu: no wedge node at a VTK position");
+        order.push_back(found);
+    }
+    return order;
+}
+
 // VTK cell type and the Gmsh node index for each VTK node position.
 int vtkType(CellType t, std::vector<int>& order)
 {
@@ -35,6 +62,11 @@ int vtkType(CellType t, std::vector<int>& order)
         order = {0, 1, 2, 3, 4, 5, 6, 7, 8, 11, 13, 9, 16, 18, 19, 17, 10, 12, 14, 15,
                  22, 23, 21, 24, 20, 25, 26};
         return 29;
+    case CellType::Prism6:
+    case CellType::Prism15:
+    case CellType::Prism18:
+        order = prismOrder(t);
+        return t == CellType::Prism6 ? 13 : t == CellType::Prism15 ? 26 : 32;
     default:
         throw std::logic_error("writeVtu: not a volume cell");
     }

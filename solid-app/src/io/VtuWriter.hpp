@@ -2,7 +2,8 @@
 // VTK unstructured-grid output of the solid (reference configuration + displacement field,
 // use ParaView's "Warp By Vector"). Quadratic cells are written as VTK quadratic types
 // (Tet10 -> VTK_QUADRATIC_TETRA 24, Hex20 -> VTK_QUADRATIC_HEXAHEDRON 25, Hex27 ->
-// VTK_TRIQUADRATIC_HEXAHEDRON 29) with the node order converted from Gmsh's.
+// VTK_TRIQUADRATIC_HEXAHEDRON 29, Prism6/15/18 -> VTK_WEDGE 13 / VTK_QUADRATIC_WEDGE 26 /
+// VTK_BIQUADRATIC_QUADRATIC_WEDGE 32) with the node order converted from Gmsh's.
 #pragma once
 #include "mesh/Mesh.hpp"
 

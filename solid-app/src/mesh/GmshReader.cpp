@@ -71,7 +71,7 @@ void readCells(int dim, int physical, const std::string& file, const std::string
                 gmsh::model::mesh::getElementProperties(types[t], name, d, o, nn, c, np);
                 throw std::runtime_error(file + ": physical group '" + group + "' has " + name +
                                          " elements, which are not supported (use Tet10, "
-                                         "Hex20/Hex27, Tet4 or Hex8; triangles/quads on surfaces)");
+                                         "Hex20/Hex27, Prism15/18, Tet4, Hex8 or Prism6; pyramids are not supported)");
             }
             const int n = ReferenceElement::get(type).numNodes();
             const std::size_t count = tags[t].size();
@@ -157,9 +157,9 @@ Mesh readGmsh(const std::string& file, const MeshSelection& selection, bool quie
     mesh.checkJacobians();
     if (!quiet) {
         const auto counts = mesh.cellTypeCounts();
-        if (counts.count("Tet4") || counts.count("Hex8"))
-            std::cerr << "warning: " << file << ": linear Tet4/Hex8 cells lock volumetrically for "
-                      << "nu -> 0.5 (use Tet10 or Hex20)\n";
+        if (counts.count("Tet4") || counts.count("Hex8") || counts.count("Prism6"))
+            std::cerr << "warning: " << file << ": linear Tet4/Hex8/Prism6 cells lock volumetrically "
+                      << "for nu -> 0.5 (use Tet10 or Hex20)\n";
     }
     return mesh;
 }

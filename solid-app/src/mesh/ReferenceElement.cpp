@@ -51,7 +51,7 @@ bool cellTypeFromGmsh(int gmshType, CellType& type)
         {4, CellType::Tet4},  {11, CellType::Tet10}, {5, CellType::Hex8},
         {17, CellType::Hex20}, {12, CellType::Hex27}, {2, CellType::Tri3},
         {9, CellType::Tri6},  {3, CellType::Quad4},  {16, CellType::Quad8},
-        {10, CellType::Quad9}};
+        {10, CellType::Quad9}, {6, CellType::Prism6}, {18, CellType::Prism15}, {13, CellType::Prism18}};
     auto it = table.find(gmshType);
     if (it == table.end())
         return false;
@@ -152,6 +152,38 @@ ReferenceElement::ReferenceElement(CellType type) : type_(type)
                     monomials_.push_back(m);
         }
         break;
+    case CellType::Prism6:
+    case CellType::Prism15:
+    case CellType::Prism18: {
+        // triangle (u, v) x line (w in [-1, 1]); Gmsh node table
+        simplex_ = false;
+        append({{0, 0, -1}, {1, 0, -1}, {0, 1, -1}, {0, 0, 1}, {1, 0, 1}, {0, 1, 1}});
+        if (type == CellType::Prism6) {
+            name_ = "Prism6";
+            for (const V& m : completeMonomials(2, 1))
+                for (int k = 0; k <= 1; ++k)
+                    monomials_.emplace_back(m[0], m[1], k);
+            break;
+        }
+        order_ = 2;
+        append({{.5, 0, -1}, {0, .5, -1}, {0, 0, 0}, {.5, .5, -1}, {1, 0, 0}, {0, 1, 0},
+                {.5, 0, 1}, {0, .5, 1}, {.5, .5, 1}});
+        if (type == CellType::Prism18) {
+            name_ = "Prism18";
+            append({{.5, 0, 0}, {0, .5, 0}, {.5, .5, 0}});
+            for (const V& m : completeMonomials(2, 2))
+                for (int k = 0; k <= 2; ++k)
+                    monomials_.emplace_back(m[0], m[1], k);
+        } else {
+            name_ = "Prism15";   // P2(u, v) x {1, w}  +  P1(u, v) x {w^2}
+            for (const V& m : completeMonomials(2, 2))
+                for (int k = 0; k <= 1; ++k)
+                    monomials_.emplace_back(m[0], m[1], k);
+            for (const V& m : completeMonomials(2, 1))
+                monomials_.emplace_back(m[0], m[1], 2);
+        }
+        break;
+    }
     }
     const int n = numNodes();
     if (static_cast<int>(monomials_.size()) != n)
@@ -168,12 +200,14 @@ ReferenceElement::ReferenceElement(CellType type) : type_(type)
 
 const ReferenceElement& ReferenceElement::get(CellType type)
 {
-    static const std::array<ReferenceElement, 10> all = {
-        ReferenceElement(CellType::Tet4),  ReferenceElement(CellType::Tet10),
-        ReferenceElement(CellType::Hex8),  ReferenceElement(CellType::Hex20),
-        ReferenceElement(CellType::Hex27), ReferenceElement(CellType::Tri3),
-        ReferenceElement(CellType::Tri6),  ReferenceElement(CellType::Quad4),
-        ReferenceElement(CellType::Quad8), ReferenceElement(CellType::Quad9)};
+    static const std::array<ReferenceElement, numCellTypes> all = {
+        ReferenceElement(CellType::Tet4),   ReferenceElement(CellType::Tet10),
+        ReferenceElement(CellType::Hex8),   ReferenceElement(CellType::Hex20),
+        ReferenceElement(CellType::Hex27),  ReferenceElement(CellType::Tri3),
+        ReferenceElement(CellType::Tri6),   ReferenceElement(CellType::Quad4),
+        ReferenceElement(CellType::Quad8),  ReferenceElement(CellType::Quad9),
+        ReferenceElement(CellType::Prism6), ReferenceElement(CellType::Prism15),
+        ReferenceElement(CellType::Prism18)};
     return all[static_cast<int>(type)];
 }
 

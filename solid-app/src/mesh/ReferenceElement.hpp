@@ -11,7 +11,9 @@ namespace fsi::mesh {
 
 // Volume cells and boundary faces understood by the solver (Gmsh type ids in comments).
 enum class CellType { Tet4, Tet10, Hex8, Hex20, Hex27,   // 4, 11, 5, 17, 12
-                      Tri3, Tri6, Quad4, Quad8, Quad9 }; // 2, 9, 3, 16, 10
+                      Tri3, Tri6, Quad4, Quad8, Quad9,   // 2, 9, 3, 16, 10
+                      Prism6, Prism15, Prism18 };        // 6, 18, 13
+constexpr int numCellTypes = 13;
 
 class ReferenceElement
 {
