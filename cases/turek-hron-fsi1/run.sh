@@ -18,16 +18,17 @@
 #   --tolerance    coupling.convergence.absolute_tolerance [m] (default: the config's, 1e-8)
 #   --beam NX,NY   override the preset's beam cells along / across the beam (NY even)
 #   --np-fluid     fluid ranks (default 1; > 1 decomposes the fluid mesh, hierarchical)
-#   --timeout      comm timeout of both programs [s] (default 600)
+#   --timeout      comm timeout of both programs [s] (default by preset: coarse 600, medium 1800,
+#                  fine 5400: the first fluid solve starts from rest and takes minutes on a loaded machine)
 # Writes log.fluid, log.solid, run.yaml (the config used) and results/: history.csv,
 # coupling.csv, summary.csv (solid-app), forces.csv, benchmark.csv, summary.txt (tools/summary.py),
 # fluid-coupling.csv (fluid-app's per-iteration log), wall_s.
 set -euo pipefail
 here=$(pwd)
-usage() { sed -n '6,27p' "$0" | sed 's/^# \{0,1\}//'; exit "${1:-0}"; }
+usage() { sed -n '6,28p' "$0" | sed 's/^# \{0,1\}//'; exit "${1:-0}"; }
 
 preset=coarse launch=mpmd material=elastic accelerator="" relaxation="" tolerance="" npf=1
-timeout=600 mesh_only=0 beam=
+timeout='' mesh_only=0 beam=
 while [ $# -gt 0 ]; do
   case "$1" in
     --preset) preset=$2; shift 2 ;;
@@ -47,11 +48,12 @@ done
 # Mesh presets: fluid blockMesh level (cells per direction x1, x2, x4) and the beam's Hex20
 # cells along (nx) and across (ny) the beam.
 case "$preset" in
-  coarse) flevel=coarse nx=18 ny=2 ;;
-  medium) flevel=medium nx=35 ny=2 ;;
-  fine)   flevel=fine   nx=70 ny=4 ;;
+  coarse) flevel=coarse nx=18 ny=2 t_default=600 ;;
+  medium) flevel=medium nx=35 ny=2 t_default=1800 ;;
+  fine)   flevel=fine   nx=70 ny=4 t_default=5400 ;;
   *) echo "error: run.sh: --preset must be coarse, medium or fine, got '$preset'" >&2; exit 2 ;;
 esac
+timeout=${timeout:-$t_default}
 if [ -n "$beam" ]; then nx=${beam%,*} ny=${beam#*,}; fi
 case "$launch" in mpmd|port) ;; *) echo "error: run.sh: --launch must be mpmd or port" >&2; exit 2 ;; esac
 case "$material" in

@@ -5,7 +5,8 @@
 # finest values, on the presets coarse, medium, fine of cases/turek-hron-fsi1.
 # Driven by scripts/verify fsi1; writes $FSI_VERIFY_DIR/error_vs_runtime.csv
 # (size = fluid cells; the beam's Hex20 cells are in $FSI_VERIFY_DIR/run-LEVEL/mesh_size).
-# FSI1_LEVELS overrides the preset list (e.g. "coarse medium"); FSI1_LAUNCH mpmd|port.
+# FSI1_LEVELS overrides the preset list (e.g. "coarse medium"); FSI1_LAUNCH mpmd|port;
+# FSI1_REUSE=1 keeps a level whose run folder already has results/benchmark.csv (no re-run).
 set -euo pipefail
 : "${FSI_VERIFY_DIR:?run through scripts/verify fsi1}"
 root=${FSI_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}
@@ -19,11 +20,15 @@ csv=$FSI_VERIFY_DIR/error_vs_runtime.csv
 echo "level,size,cores,wall_s,quantity,value,reference,rel_error" > "$csv"
 for level in $levels; do
   run=$FSI_VERIFY_DIR/run-$level
-  echo "fsi1: $level in $run"
-  rm -rf "$run"
-  cp -r "$case_dir" "$run"
-  (cd "$run" && ./run.sh --preset "$level" --launch "$launch" > log.run 2>&1) ||
-    { echo "error: fsi1 $level failed, see $run/log.run" >&2; tail -5 "$run/log.run" >&2; exit 1; }
+  if [ "${FSI1_REUSE:-0}" = 1 ] && [ -f "$run/results/benchmark.csv" ]; then
+    echo "fsi1: $level: reusing $run"
+  else
+    echo "fsi1: $level in $run"
+    rm -rf "$run"
+    cp -r "$case_dir" "$run"
+    (cd "$run" && ./run.sh --preset "$level" --launch "$launch" > log.run 2>&1) ||
+      { echo "error: fsi1 $level failed, see $run/log.run" >&2; tail -5 "$run/log.run" >&2; exit 1; }
+  fi
   cells=$(awk '{print $1}' "$run/mesh_size")
   wall=$(cat "$run/results/wall_s")
   # benchmark.csv: level,time,quantity,value,reference,rel_error (one level: t = 0)
