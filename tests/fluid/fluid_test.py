@@ -42,7 +42,7 @@ def env():
     return e
 
 
-def run(cmd, log, cwd=None, timeout=600):
+def run(cmd, log, cwd=None, timeout=1200):
     t0 = time.time()
     with open(log, "w") as f:
         rc = subprocess.call(cmd, stdout=f, stderr=subprocess.STDOUT, cwd=cwd, env=env(),
@@ -293,28 +293,28 @@ def t_parallel_equivalence(a):
               % (diffusivity, dmax, tol, fmax, F1, F2))
 
 
-def coupled_run(a, name, mode, nfluid, solid_args, timeout=300):
+def coupled_run(a, name, mode, nfluid, solid_args, timeout=1200, simple_iterations=30):
     # sub-iterations to the absolute fvSolution residualControl: 1 and 2 ranks reach the same state
     # Converged start and a fixed number of SIMPLE iterations per SOLVE (no stop test): 1 and
     # 2 ranks run the same algorithm; uniform motion diffusivity: identical moved meshes on 1
     # and 2 ranks (see parallel-equivalence). Keeps the test light on a shared machine.
-    fsi = "mode coupled;\ncoupled { maxIterations 30; residualDrop 0; forceTolerance 0; }"
+    fsi = "mode coupled;\ncoupled { maxIterations %d; residualDrop 0; forceTolerance 0; }" % simple_iterations
     d = prepare(a, name, nprocs=nfluid, single=True, extra_fsi=fsi, diffusivity="uniform",
                 converged_start=True)
     fluid = [a.fluid_app, "-case", d] + (["-parallel"] if nfluid > 1 else [])
     solid = [a.fake_solid, "--out", os.path.join(d, "solid.csv")] + solid_args
     if mode == "mpmd":
         cmd = ([a.mpiexec] + MPI_FLAGS + ["-np", str(nfluid)] + fluid
-               + ["--launch", "mpmd", "--comm-timeout", "300", ":", "-np", "1"] + solid
-               + ["--launch", "mpmd", "--comm-timeout", "300"])
+               + ["--launch", "mpmd", "--comm-timeout", "900", ":", "-np", "1"] + solid
+               + ["--launch", "mpmd", "--comm-timeout", "900"])
     else:
         pf = os.path.join(d, "fsi.port")
         lp = [a.launch_port, "--mpiexec", a.mpiexec]
         for fl in MPI_FLAGS:
             lp += ["--mpi-flag", fl]
         cmd = (lp + ["-np", str(nfluid)] + fluid + ["--launch", "port", "--port-file", pf,
-                                                     "--comm-timeout", "300", ":", "-np", "1"]
-               + solid + ["--launch", "port", "--port-file", pf, "--comm-timeout", "300"])
+                                                     "--comm-timeout", "900", ":", "-np", "1"]
+               + solid + ["--launch", "port", "--port-file", pf, "--comm-timeout", "900"])
     rc, log = run(cmd, os.path.join(d, "log.coupled"), timeout=timeout)
     return d, rc, log
 
@@ -345,8 +345,8 @@ def t_mpmd(a):
 
 def t_port(a):
     d, rc, log = coupled_run(a, "port-np2", "port", 2,
-                             ["--angle", "2", "--steps", "1", "--iterations", "2",
-                              "--expect-fluid-ranks", "2"])
+                             ["--angle", "2", "--steps", "1", "--iterations", "1",
+                              "--expect-fluid-ranks", "2"], simple_iterations=10)
     check(rc == 0 and "fake-solid: done with fluid-app (fluid, 2 ranks)" in log
           and "launch-port: fluid exit 0, solid exit 0" in log,
           "port mode: fluid-app -parallel (2 ranks) + fake-solid via ompi-server, exit %d" % rc)
@@ -354,7 +354,7 @@ def t_port(a):
 
 def t_peer_abort(a):
     d, rc, log = coupled_run(a, "peer-abort", "mpmd", 1, ["--steps", "2", "--iterations", "1",
-                                                          "--abort-at-step", "2"], timeout=120)
+                                                          "--abort-at-step", "2"], simple_iterations=10)
     check(rc != 0, "job exits non-zero after the driver's Abort (exit %d)" % rc)
     check("test abort at step 2" in log and re.search(r"error: .*fake-solid: test abort at step 2", log) is not None,
           "fluid-app prints the peer's reason")
