@@ -19,20 +19,24 @@
 #include <fstream>
 #include <stdexcept>
 
-namespace fsi::app {
+namespace fsi::app
+{
 namespace fs = std::filesystem;
 
 RunOptions parseArguments(int argc, char** argv)
 {
     RunOptions o;
     const std::string usage = "usage: solid-app CONFIG.yaml [--out DIR]";
-    for (int i = 1; i < argc; ++i) {
+    for (int i = 1; i < argc; ++i)
+    {
         const std::string a = argv[i];
-        if (a == "--out") {
+        if (a == "--out")
+        {
             if (i + 1 >= argc)
                 throw std::runtime_error("--out needs a folder; " + usage);
             o.outputFolder = argv[++i];
-        } else if (a == "-h" || a == "--help")
+        }
+        else if (a == "-h" || a == "--help")
             throw std::runtime_error(usage);
         else if (!a.empty() && a[0] == '-')
             throw std::runtime_error("unknown option '" + a + "'; " + usage);
@@ -60,10 +64,15 @@ fe::ProblemDefinition problemFromConfig(const config::SolidConfig& c)
         p.gravity = Eigen::Vector3d(c.loads.gravity[0], c.loads.gravity[1], c.loads.gravity[2]);
     p.clamped = c.mesh.clamped;
     p.wetted = c.mesh.wetted;
-    for (const auto& d : c.loads.displacements)
-        p.displacements.push_back({d.surface, d.value});
+    for (const auto& d : c.loads.displacements) {
+        fe::PrescribedDisplacement prescribed;
+        prescribed.surface = d.surface;
+        prescribed.value = d.value;
+        p.displacements.push_back(prescribed);
+    }
     for (const auto& t : c.loads.tractions)
-        p.tractions.push_back({t.surface, Eigen::Vector3d(t.traction[0], t.traction[1], t.traction[2])});
+        p.tractions.push_back(
+            {t.surface, Eigen::Vector3d(t.traction[0], t.traction[1], t.traction[2])});
     for (const auto& f : c.loads.forces)
         p.forces.push_back({f.surface, Eigen::Vector3d(f.total[0], f.total[1], f.total[2])});
     p.newton.maxIterations = c.newton.maxIterations;
@@ -97,20 +106,24 @@ int runStandalone(const RunOptions& options)
     MPI_Comm_size(MPI_COMM_WORLD, &ranks);
     const config::SolidConfig cfg = config::SolidConfig::load(options.configFile);
     const std::string out = options.outputFolder.empty() ? cfg.output.folder : options.outputFolder;
-    if (rank == 0) {
+    if (rank == 0)
+    {
         std::error_code ec;
         fs::create_directories(out, ec);
         if (ec)
-            throw std::runtime_error(out + ": cannot create the output folder (" + ec.message() + ")");
+            throw std::runtime_error(out + ": cannot create the output folder (" + ec.message() +
+                                     ")");
         std::printf("%s", cfg.echo().c_str());
         io::writeFileAtomically((fs::path(out) / "config.echo.yaml").string(), cfg.echo());
     }
-    const mesh::Mesh mesh = mesh::readGmsh(cfg.mesh.file, {cfg.mesh.volume, surfacesOf(cfg)}, rank != 0);
+    const mesh::Mesh mesh =
+        mesh::readGmsh(cfg.mesh.file, {cfg.mesh.volume, surfacesOf(cfg)}, rank != 0);
     const auto law = material::makeMaterial(cfg.material, cfg.kinematics);
     fe::ProblemDefinition problem = problemFromConfig(cfg);
     problem.printIterations = true;
     fe::StructuralSolver solver(MPI_COMM_WORLD, mesh, *law, problem);
-    if (rank == 0) {
+    if (rank == 0)
+    {
         std::printf("solid-app: %d nodes, %d cells (", mesh.numNodes(), mesh.cells.size());
         for (const auto& [name, count] : mesh.cellTypeCounts())
             std::printf(" %s:%d", name.c_str(), count);
@@ -119,32 +132,38 @@ int runStandalone(const RunOptions& options)
     }
     std::vector<std::string> names;
     std::vector<std::array<double, 3>> points;
-    for (const auto& w : cfg.output.watch) {
+    for (const auto& w : cfg.output.watch)
+    {
         names.push_back(w.name);
         points.push_back(w.point);
     }
     io::CsvHistory history((fs::path(out) / "history.csv").string(), mesh, names, points);
     io::PvdSeries series((fs::path(out) / "solid.pvd").string());
-    std::string levels = "level,time,load_factor,newton_iterations,load_cuts,residual,factorizations,wall_s\n";
+    std::string levels =
+        "level,time,load_factor,newton_iterations,load_cuts,residual,factorizations,wall_s\n";
 
     const std::vector<double> times = cfg.time.levels();
     double previous = 0.0;
-    for (std::size_t n = 0; n < times.size(); ++n) {
+    for (std::size_t n = 0; n < times.size(); ++n)
+    {
         double dt = n == 0 ? 0.0 : times[n] - previous;
         if (std::abs(dt - cfg.time.dt) <= 1e-9 * cfg.time.dt)
-            dt = cfg.time.dt;   // bitwise-constant dt: the factorization can be reused
+            dt = cfg.time.dt; // bitwise-constant dt: the factorization can be reused
         const material::TimeStep step{times[n], dt};
         const double factor = cfg.time.factorAt(times[n]);
         if (rank == 0)
-            std::printf("level %zu  t = %g s  dt = %g s  load factor %g\n", n, step.time, step.dt, factor);
+            std::printf("level %zu  t = %g s  dt = %g s  load factor %g\n", n, step.time, step.dt,
+                        factor);
         const auto report = solver.solve(step, {}, factor);
         if (rank == 0)
-            std::printf("  %s in %d Newton iterations (|R| %.3e -> %.3e N), %d factorizations so far; "
-                        "assembly %.3f s, linear solver %.3f s\n",
-                        report.converged ? "converged" : "NOT converged", report.newtonIterations,
-                        report.initialResidual, report.finalResidual, solver.factorizationCount(),
-                        report.assemblySeconds, report.linearSolveSeconds);
-        if (!report.converged) {
+            std::printf(
+                "  %s in %d Newton iterations (|R| %.3e -> %.3e N), %d factorizations so far; "
+                "assembly %.3f s, linear solver %.3f s\n",
+                report.converged ? "converged" : "NOT converged", report.newtonIterations,
+                report.initialResidual, report.finalResidual, solver.factorizationCount(),
+                report.assemblySeconds, report.linearSolveSeconds);
+        if (!report.converged)
+        {
             if (rank == 0)
                 std::fprintf(stderr, "error: %s: level %zu (t = %g s) did not converge: %s\n",
                              options.configFile.c_str(), n, step.time, report.message.c_str());
@@ -153,12 +172,15 @@ int runStandalone(const RunOptions& options)
         solver.acceptLevel();
         previous = times[n];
         std::vector<material::Vector6> nodal, cellStress;
-        const bool writeVtu = cfg.output.vtu && (n % cfg.output.every == 0 || n + 1 == times.size());
+        const bool writeVtu =
+            cfg.output.vtu && (n % cfg.output.every == 0 || n + 1 == times.size());
         if (writeVtu)
             solver.cauchyStress(nodal, cellStress);
-        if (rank == 0) {
+        if (rank == 0)
+        {
             history.record(step.time, solver.displacement());
-            if (writeVtu) {
+            if (writeVtu)
+            {
                 char name[64];
                 std::snprintf(name, sizeof name, "solid_%05zu.vtu", n);
                 io::writeVtu((fs::path(out) / name).string(), mesh,
@@ -169,23 +191,29 @@ int runStandalone(const RunOptions& options)
             const double wall =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
             char row[256];
-            std::snprintf(row, sizeof row, "%zu,%.10g,%.10g,%d,%d,%.6e,%d,%.3f\n", n, step.time, factor,
-                          report.newtonIterations, report.loadCuts, report.finalResidual,
+            std::snprintf(row, sizeof row, "%zu,%.10g,%.10g,%d,%d,%.6e,%d,%.3f\n", n, step.time,
+                          factor, report.newtonIterations, report.loadCuts, report.finalResidual,
                           solver.factorizationCount(), wall);
             levels += row;
             io::writeFileAtomically((fs::path(out) / "levels.csv").string(), levels);
         }
     }
-    if (rank == 0) {
-        const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
-        for (std::size_t k = 0; k < names.size(); ++k) {
+    if (rank == 0)
+    {
+        const double wall =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
+        for (std::size_t k = 0; k < names.size(); ++k)
+        {
             const int node = history.node(k);
             const auto& u = solver.displacement();
-            std::printf("watch %s: node %d at distance %.3e m, u = (%.6e, %.6e, %.6e) m\n", names[k].c_str(),
-                        node, history.distance(k), u[3 * node], u[3 * node + 1], u[3 * node + 2]);
+            std::printf("watch %s: node %d at distance %.3e m, u = (%.6e, %.6e, %.6e) m\n",
+                        names[k].c_str(), node, history.distance(k), u[3 * node], u[3 * node + 1],
+                        u[3 * node + 2]);
         }
-        std::printf("solid-app: done, %zu level(s), %d analyses, %d factorizations, wall %.3f s, output in %s\n",
-                    times.size(), solver.analysisCount(), solver.factorizationCount(), wall, out.c_str());
+        std::printf("solid-app: done, %zu level(s), %d analyses, %d factorizations, wall %.3f s, "
+                    "output in %s\n",
+                    times.size(), solver.analysisCount(), solver.factorizationCount(), wall,
+                    out.c_str());
     }
     return 0;
 }

@@ -7,16 +7,18 @@
 #include <string>
 #include <vector>
 
-namespace fsi::config {
+namespace fsi::config
+{
 struct SolidConfig;
 }
 
-namespace fsi::app {
+namespace fsi::app
+{
 
 struct RunOptions
 {
     std::string configFile;
-    std::string outputFolder;   // "" = solid.output.folder of the config
+    std::string outputFolder; // "" = solid.output.folder of the config
 };
 
 // Parses "CONFIG.yaml [--out DIR]"; throws std::runtime_error with a usage line.

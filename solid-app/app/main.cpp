@@ -16,21 +16,27 @@ int main(int argc, char** argv)
     MPI_Init(&argc, &argv);
     int rank = 0, code = 0;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    try {
+    try
+    {
 #ifdef FSI_HAVE_DRIVER
         fsi::driver::takeLaunchFlags(argc, argv); // --launch, --port-file, --comm-timeout
 #endif
         const auto options = fsi::app::parseArguments(argc, argv);
-        if (fsi::app::isCoupledConfig(options.configFile)) {
+        if (fsi::app::isCoupledConfig(options.configFile))
+        {
 #ifdef FSI_HAVE_DRIVER
             code = fsi::driver::runCoupled(options.configFile, options.outputFolder);
 #else
-            throw std::runtime_error(options.configFile + ": has a 'coupling' block but this solid-app "
+            throw std::runtime_error(options.configFile +
+                                     ": has a 'coupling' block but this solid-app "
                                      "was built without the coupling driver");
 #endif
-        } else
+        }
+        else
             code = fsi::app::runStandalone(options);
-    } catch (const std::exception& e) {
+    }
+    catch (const std::exception& e)
+    {
         if (rank == 0)
             std::fprintf(stderr, "error: %s\n", e.what());
         code = 1;

@@ -10,7 +10,8 @@
 
 using fsi::config::SolidConfig;
 
-namespace {
+namespace
+{
 
 const char* valid = R"(solid:
   mesh: {file: beam.msh, volume: solid, clamped: [root]}
@@ -21,7 +22,8 @@ const char* valid = R"(solid:
 
 std::string write(const std::string& text, const std::string& name = "beam.yaml")
 {
-    auto dir = std::filesystem::temp_directory_path() / ("fsi_test_config_" + std::to_string(::getpid()));
+    auto dir =
+        std::filesystem::temp_directory_path() / ("fsi_test_config_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     const auto path = (dir / name).string();
     std::ofstream(path) << text;
@@ -30,9 +32,12 @@ std::string write(const std::string& text, const std::string& name = "beam.yaml"
 
 std::string errorOf(const std::string& text)
 {
-    try {
+    try
+    {
         SolidConfig::load(write(text));
-    } catch (const std::exception& e) {
+    }
+    catch (const std::exception& e)
+    {
         const std::string msg = e.what();
         EXPECT_EQ(msg.find('\n'), std::string::npos) << "not one line: " << msg;
         EXPECT_EQ(msg.rfind("beam.yaml: ", 0), 0u) << "does not name the file first: " << msg;
@@ -69,25 +74,31 @@ TEST(SolidConfig, UnknownKeyWithSuggestion)
 {
     const auto msg = errorOf(replaced(valid, "material:", "materail:"));
     EXPECT_EQ(msg, "beam.yaml: unknown key 'materail' in 'solid' (did you mean 'material'?)");
-    EXPECT_NE(errorOf(replaced(valid, "volume:", "volumes:")).find("'volumes' in 'solid.mesh'"), std::string::npos);
+    EXPECT_NE(errorOf(replaced(valid, "volume:", "volumes:")).find("'volumes' in 'solid.mesh'"),
+              std::string::npos);
 }
 
 TEST(SolidConfig, MissingKey)
 {
     EXPECT_EQ(errorOf(replaced(valid, "  kinematics: small-strain\n", "")),
               "beam.yaml: missing key 'kinematics' in 'solid'");
-    EXPECT_NE(errorOf(replaced(valid, "volume: solid, ", "")).find("missing key 'volume' in 'solid.mesh'"),
+    EXPECT_NE(errorOf(replaced(valid, "volume: solid, ", ""))
+                  .find("missing key 'volume' in 'solid.mesh'"),
               std::string::npos);
 }
 
 TEST(SolidConfig, WrongTypesAndChoices)
 {
-    EXPECT_NE(errorOf(replaced(valid, "E: 1.0e6", "E: soft")).find("'solid.material.E' must be a number"),
+    EXPECT_NE(
+        errorOf(replaced(valid, "E: 1.0e6", "E: soft")).find("'solid.material.E' must be a number"),
+        std::string::npos);
+    EXPECT_NE(
+        errorOf(replaced(valid, "small-strain", "large")).find("'solid.kinematics' is 'large'"),
+        std::string::npos);
+    EXPECT_NE(errorOf(replaced(valid, "[0, -1, 0]", "[0, -1]")).find("3 components"),
               std::string::npos);
-    EXPECT_NE(errorOf(replaced(valid, "small-strain", "large")).find("'solid.kinematics' is 'large'"),
-              std::string::npos);
-    EXPECT_NE(errorOf(replaced(valid, "[0, -1, 0]", "[0, -1]")).find("3 components"), std::string::npos);
-    EXPECT_NE(errorOf(std::string(valid) + "  newton: {max_iterations: 2.5}\n").find("must be an integer"),
+    EXPECT_NE(errorOf(std::string(valid) + "  newton: {max_iterations: 2.5}\n")
+                  .find("must be an integer"),
               std::string::npos);
 }
 
@@ -95,13 +106,17 @@ TEST(SolidConfig, PhysicalBoundsOfTheMaterial)
 {
     EXPECT_NE(errorOf(replaced(valid, "nu: 0.3", "nu: 0.5")).find("nu"), std::string::npos);
     EXPECT_NE(errorOf(replaced(valid, "E: 1.0e6", "E: -1.0e6")).find("E"), std::string::npos);
-    const std::string visco = replaced(valid, "{type: linear-elastic, E: 1.0e6, nu: 0.3}",
-                                       "{type: viscoelastic, E: 1.0e6, nu: 0.3, modulus_basis: long-term,"
-                                       " prony: {convention: long-term-gamma, coefficients: [0.5], times: [0.0]}}");
+    const std::string visco =
+        replaced(valid, "{type: linear-elastic, E: 1.0e6, nu: 0.3}",
+                 "{type: viscoelastic, E: 1.0e6, nu: 0.3, modulus_basis: long-term,"
+                 " prony: {convention: long-term-gamma, coefficients: [0.5], times: [0.0]}}");
     EXPECT_NE(errorOf(visco).find("times"), std::string::npos);
     // a Prony block in an elastic case is an error, not silently ignored
-    const std::string elasticWithProny = replaced(valid, "nu: 0.3}", "nu: 0.3, prony: {convention: abaqus-g}}");
-    EXPECT_NE(errorOf(elasticWithProny).find("'solid.material.prony' is only for type viscoelastic"), std::string::npos);
+    const std::string elasticWithProny =
+        replaced(valid, "nu: 0.3}", "nu: 0.3, prony: {convention: abaqus-g}}");
+    EXPECT_NE(
+        errorOf(elasticWithProny).find("'solid.material.prony' is only for type viscoelastic"),
+        std::string::npos);
     // the convention must be stated
     const std::string noConvention = replaced(visco, "convention: long-term-gamma, ", "");
     EXPECT_NE(errorOf(noConvention).find("missing key 'convention'"), std::string::npos);
@@ -109,17 +124,20 @@ TEST(SolidConfig, PhysicalBoundsOfTheMaterial)
 
 TEST(SolidConfig, TimeBlock)
 {
-    const auto c = SolidConfig::load(write(std::string(valid) + "  time: {dt: 0.5, end: 2, load_factor: [[0, 0], [1, 1]]}\n"));
+    const auto c = SolidConfig::load(
+        write(std::string(valid) + "  time: {dt: 0.5, end: 2, load_factor: [[0, 0], [1, 1]]}\n"));
     EXPECT_EQ(c.time.levels(), (std::vector<double>{0, 0.5, 1.0, 1.5, 2.0}));
     EXPECT_DOUBLE_EQ(c.time.factorAt(0.5), 0.5);
     EXPECT_DOUBLE_EQ(c.time.factorAt(3.0), 1.0);
-    EXPECT_NE(errorOf(std::string(valid) + "  time: {dt: 0, end: 2}\n").find("'solid.time.dt' must be > 0"),
+    EXPECT_NE(errorOf(std::string(valid) + "  time: {dt: 0, end: 2}\n")
+                  .find("'solid.time.dt' must be > 0"),
               std::string::npos);
 }
 
 TEST(SolidConfig, GravityNeedsDensityAndYamlSyntaxErrors)
 {
-    EXPECT_NE(errorOf(replaced(valid, "loads: {", "loads: {gravity: [0, -2, 0], ")).find("density"), std::string::npos);
+    EXPECT_NE(errorOf(replaced(valid, "loads: {", "loads: {gravity: [0, -2, 0], ")).find("density"),
+              std::string::npos);
     EXPECT_NE(errorOf("solid: [unclosed\n").find("YAML syntax error"), std::string::npos);
 }
 

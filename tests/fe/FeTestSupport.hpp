@@ -10,11 +10,13 @@
 #include <string>
 #include <unistd.h>
 
-namespace fsi::testing {
+namespace fsi::testing
+{
 
 inline std::string tempFile(const std::string& name)
 {
-    auto dir = std::filesystem::temp_directory_path() / ("fsi_test_fe_" + std::to_string(::getpid()));
+    auto dir =
+        std::filesystem::temp_directory_path() / ("fsi_test_fe_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     return (dir / name).string();
 }

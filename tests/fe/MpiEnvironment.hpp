@@ -4,7 +4,8 @@
 #include <gtest/gtest.h>
 #include <mpi.h>
 
-namespace fsi::testing {
+namespace fsi::testing
+{
 class MpiEnvironment : public ::testing::Environment
 {
 public:

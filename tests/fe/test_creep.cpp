@@ -14,7 +14,8 @@
 
 using namespace fsi;
 
-namespace {
+namespace
+{
 double creepCompliance(double t)
 {
     return 2e-6 - 4.2504e-7 * std::exp(-t / 0.142681) - 5.7496e-7 * std::exp(-t / 14.0173);
@@ -25,7 +26,8 @@ TEST(Viscoelastic, UniaxialCreepMatchesAnalyticCompliance)
 {
     fsi::testing::BlockSpec spec;
     spec.cells = {2, 2, 2};
-    const auto file = fsi::testing::makeBlockMesh(fsi::testing::tempFile("creep.msh"), fsi::testing::TestCell::Tet10, spec);
+    const auto file = fsi::testing::makeBlockMesh(fsi::testing::tempFile("creep.msh"),
+                                                  fsi::testing::TestCell::Tet10, spec);
     const mesh::Mesh m = mesh::readGmsh(file, {"solid", {"x0", "y0", "z0", "x1"}}, true);
     material::MaterialParameters mp;
     mp.type = "viscoelastic";
@@ -38,7 +40,8 @@ TEST(Viscoelastic, UniaxialCreepMatchesAnalyticCompliance)
     const auto law = material::makeMaterial(mp, material::Kinematics::SmallStrain);
     const double K = 10e6, sigma0 = 1e4;
     fe::ProblemDefinition p;
-    for (int c = 0; c < 3; ++c) {
+    for (int c = 0; c < 3; ++c)
+    {
         fe::PrescribedDisplacement d;
         d.surface = std::string(1, "xyz"[c]) + "0";
         d.value[c] = 0.0;
@@ -50,26 +53,31 @@ TEST(Viscoelastic, UniaxialCreepMatchesAnalyticCompliance)
     const int probe = m.nearestNode(Eigen::Vector3d(1, 0.5, 0.5));
 
     // time grid: dt = 0.005 to 1 s, 0.05 to 10 s, 1 s to 100 s
-    std::vector<double> times{0.0}, steps{0.0};   // nominal dt per level (bitwise constant)
-    for (int i = 1; i <= 200; ++i) times.push_back(0.005 * i), steps.push_back(0.005);
-    for (int i = 1; i <= 180; ++i) times.push_back(1.0 + 0.05 * i), steps.push_back(0.05);
-    for (int i = 1; i <= 90; ++i) times.push_back(10.0 + 1.0 * i), steps.push_back(1.0);
+    std::vector<double> times{0.0}, steps{0.0}; // nominal dt per level (bitwise constant)
+    for (int i = 1; i <= 200; ++i)
+        times.push_back(0.005 * i), steps.push_back(0.005);
+    for (int i = 1; i <= 180; ++i)
+        times.push_back(1.0 + 0.05 * i), steps.push_back(0.05);
+    for (int i = 1; i <= 90; ++i)
+        times.push_back(10.0 + 1.0 * i), steps.push_back(1.0);
     double maxError = 0.0;
     std::printf("  t [s]    eps_xx (FE)      eps_xx (analytic)   rel. error\n");
-    for (std::size_t n = 0; n < times.size(); ++n) {
+    for (std::size_t n = 0; n < times.size(); ++n)
+    {
         const material::TimeStep step{times[n], steps[n]};
         auto r = solver.solve(step);
         ASSERT_TRUE(r.converged) << r.message;
-        if (n == 250) {   // re-solve the same level: same answer, history untouched
+        if (n == 250)
+        { // re-solve the same level: same answer, history untouched
             const auto u1 = solver.displacement();
             fe::InterfaceLoads none;
-            solver.solve(step, none, 2.0);   // a different trial load ...
-            r = solver.solve(step);          // ... then the real one again
+            solver.solve(step, none, 2.0); // a different trial load ...
+            r = solver.solve(step);        // ... then the real one again
             ASSERT_TRUE(r.converged);
             EXPECT_NEAR(solver.displacement()[3 * probe], u1[3 * probe], 1e-15);
         }
         solver.acceptLevel();
-        const double fe = solver.displacement()[3 * probe];   // x = 1: u_x = eps_xx
+        const double fe = solver.displacement()[3 * probe]; // x = 1: u_x = eps_xx
         const double exact = sigma0 * (1.0 / (9.0 * K) + creepCompliance(times[n]) / 3.0);
         const double error = std::abs(fe - exact) / exact;
         maxError = std::max(maxError, error);
@@ -77,8 +85,8 @@ TEST(Viscoelastic, UniaxialCreepMatchesAnalyticCompliance)
             if (std::abs(times[n] - t) < 1e-9)
                 std::printf("  %6.1f  %.9e  %.9e   %.2e\n", t, fe, exact, error);
     }
-    std::printf("max relative error over %zu levels: %.2e; factorizations: %d\n", times.size(), maxError,
-                solver.factorizationCount());
+    std::printf("max relative error over %zu levels: %.2e; factorizations: %d\n", times.size(),
+                maxError, solver.factorizationCount());
     EXPECT_LT(maxError, 1e-3);
     // one factorization per distinct dt (0, 0.005, 0.05, 1) - the tangent is constant per dt
     EXPECT_EQ(solver.factorizationCount(), 4);

@@ -12,9 +12,11 @@
 using namespace fsi;
 using fsi::testing::TestCell;
 
-namespace {
+namespace
+{
 
-const TestCell allCells[] = {TestCell::Tet4, TestCell::Tet10, TestCell::Hex8, TestCell::Hex20, TestCell::Hex27};
+const TestCell allCells[] = {TestCell::Tet4, TestCell::Tet10, TestCell::Hex8, TestCell::Hex20,
+                             TestCell::Hex27};
 
 mesh::Mesh skewedBlock(TestCell cell, std::array<int, 3> n = {2, 2, 2}, bool structuredTets = false)
 {
@@ -24,7 +26,8 @@ mesh::Mesh skewedBlock(TestCell cell, std::array<int, 3> n = {2, 2, 2}, bool str
     spec.skew = cell == TestCell::Hex8 || cell == TestCell::Hex20 || cell == TestCell::Hex27;
     spec.structuredTets = structuredTets;
     const std::string file = fsi::testing::makeBlockMesh(
-        fsi::testing::tempFile(std::string("block_") + fsi::testing::testCellName(cell) + ".msh"), cell, spec);
+        fsi::testing::tempFile(std::string("block_") + fsi::testing::testCellName(cell) + ".msh"),
+        cell, spec);
     return mesh::readGmsh(file, {"solid", {"x0", "x1", "y0", "z0", "boundary"}}, true);
 }
 
@@ -50,19 +53,22 @@ TEST(PatchTest, LinearFieldExactConstantStress)
     material::Vector6 epsV;
     epsV << eps(0, 0), eps(1, 1), eps(2, 2), 2 * eps(0, 1), 2 * eps(1, 2), 2 * eps(0, 2);
     const material::Vector6 sigma = law->initialTangent() * epsV;
-    for (TestCell cell : allCells) {
+    for (TestCell cell : allCells)
+    {
         const mesh::Mesh m = skewedBlock(cell);
         fe::ProblemDefinition p;
         fe::PrescribedDisplacement d;
         d.surface = "boundary";
-        d.field = [&](const Eigen::Vector3d& X, double f) -> Eigen::Vector3d { return f * (A * X + offset); };
+        d.field = [&](const Eigen::Vector3d& X, double f) -> Eigen::Vector3d
+        { return f * (A * X + offset); };
         p.displacements.push_back(d);
         fe::StructuralSolver solver(MPI_COMM_WORLD, m, *law, p);
         ASSERT_GT(solver.numFreeDofs(), 0) << fsi::testing::testCellName(cell);
         const auto report = solver.solve({0.0, 0.0});
         ASSERT_TRUE(report.converged) << report.message;
         double err = 0.0;
-        for (int node = 0; node < m.numNodes(); ++node) {
+        for (int node = 0; node < m.numNodes(); ++node)
+        {
             const Eigen::Vector3d exact = A * m.nodes.col(node) + offset;
             for (int i = 0; i < 3; ++i)
                 err = std::max(err, std::abs(solver.displacement()[3 * node + i] - exact[i]));
@@ -74,30 +80,35 @@ TEST(PatchTest, LinearFieldExactConstantStress)
         for (const auto& s : nodal)
             stressErr = std::max(stressErr, (s - sigma).norm() / sigma.norm());
         EXPECT_LT(stressErr, 1e-9) << fsi::testing::testCellName(cell);
-        std::printf("patch test %-6s %4d cells: max |u - u_exact| = %.2e m, max stress error %.2e\n",
-                    fsi::testing::testCellName(cell), m.cells.size(), err, stressErr);
+        std::printf(
+            "patch test %-6s %4d cells: max |u - u_exact| = %.2e m, max stress error %.2e\n",
+            fsi::testing::testCellName(cell), m.cells.size(), err, stressErr);
     }
-    for (int q : {0, 15, 18}) {
+    for (int q : {0, 15, 18})
+    {
         const auto file = fsi::testing::makePrismBlock(fsi::testing::tempFile("prisms.msh"), q);
         const mesh::Mesh m = mesh::readGmsh(file, {"solid", {"boundary"}}, true);
         fe::ProblemDefinition p;
         fe::PrescribedDisplacement d;
         d.surface = "boundary";
-        d.field = [&](const Eigen::Vector3d& X, double f) -> Eigen::Vector3d { return f * (A * X + offset); };
+        d.field = [&](const Eigen::Vector3d& X, double f) -> Eigen::Vector3d
+        { return f * (A * X + offset); };
         p.displacements.push_back(d);
         fe::StructuralSolver solver(MPI_COMM_WORLD, m, *law, p);
         ASSERT_TRUE(solver.solve({0.0, 0.0}).converged);
         double err = 0.0;
         for (int node = 0; node < m.numNodes(); ++node)
             for (int i = 0; i < 3; ++i)
-                err = std::max(err, std::abs(solver.displacement()[3 * node + i] - (A * m.nodes.col(node) + offset)[i]));
+                err = std::max(err, std::abs(solver.displacement()[3 * node + i] -
+                                             (A * m.nodes.col(node) + offset)[i]));
         std::vector<material::Vector6> nodal, cells;
         solver.cauchyStress(nodal, cells);
         double stressErr = 0.0;
         for (const auto& s : nodal)
             stressErr = std::max(stressErr, (s - sigma).norm() / sigma.norm());
-        std::printf("patch test Prism%-2d %4d cells: max |u - u_exact| = %.2e m, max stress error %.2e\n",
-                    q ? q : 6, m.cells.size(), err, stressErr);
+        std::printf(
+            "patch test Prism%-2d %4d cells: max |u - u_exact| = %.2e m, max stress error %.2e\n",
+            q ? q : 6, m.cells.size(), err, stressErr);
         EXPECT_LT(err, 1e-12);
         EXPECT_LT(stressErr, 1e-9);
     }
@@ -110,16 +121,19 @@ TEST(ElementKernel, RigidMotionsAreStressFree)
     const auto params = fsi::testing::elastic(1.0e6, 0.3);
     const auto small = material::makeMaterial(params, material::Kinematics::SmallStrain);
     const auto tl = material::makeMaterial(params, material::Kinematics::TotalLagrangian);
-    Eigen::Matrix3d W;   // skew: infinitesimal rotation
+    Eigen::Matrix3d W; // skew: infinitesimal rotation
     W << 0, -1e-3, 2e-3, 1e-3, 0, -0.5e-3, -2e-3, 0.5e-3, 0;
     const Eigen::Matrix3d R =
         (Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d(1, 2, 3).normalized())).toRotationMatrix();
-    for (TestCell cell : allCells) {
+    for (TestCell cell : allCells)
+    {
         const mesh::Mesh m = skewedBlock(cell, {1, 1, 1});
-        for (int c = 0; c < m.cells.size(); ++c) {
+        for (int c = 0; c < m.cells.size(); ++c)
+        {
             const int n = m.cells.numNodes(c);
             Eigen::Matrix3Xd X(3, n), uSmall(3, n), uRot(3, n);
-            for (int a = 0; a < n; ++a) {
+            for (int a = 0; a < n; ++a)
+            {
                 X.col(a) = m.nodes.col(m.cells.nodes(c)[a]);
                 uSmall.col(a) = W * X.col(a) + offset;
                 uRot.col(a) = (R - Eigen::Matrix3d::Identity()) * X.col(a) + offset;
@@ -128,12 +142,15 @@ TEST(ElementKernel, RigidMotionsAreStressFree)
             fe::appendCellQuadrature(m.cells.types[c], X, data);
             fe::CellQuadrature cq{n, static_cast<int>(data.size()) / (1 + 4 * n), data.data()};
             Eigen::VectorXd f;
-            fe::cellResponse(cq, uSmall, *small, material::Kinematics::SmallStrain, {0, 0}, nullptr, f, nullptr);
+            fe::cellResponse(cq, uSmall, *small, material::Kinematics::SmallStrain, {0, 0}, nullptr,
+                             f, nullptr);
             EXPECT_LT(f.norm(), 1e-9) << fsi::testing::testCellName(cell);
-            fe::cellResponse(cq, uRot, *tl, material::Kinematics::TotalLagrangian, {0, 0}, nullptr, f, nullptr);
+            fe::cellResponse(cq, uRot, *tl, material::Kinematics::TotalLagrangian, {0, 0}, nullptr,
+                             f, nullptr);
             EXPECT_LT(f.norm(), 1e-8) << fsi::testing::testCellName(cell) << " 90 degree rotation";
             // the same rotation under small strain is NOT stress free (sanity of the test)
-            fe::cellResponse(cq, uRot, *small, material::Kinematics::SmallStrain, {0, 0}, nullptr, f, nullptr);
+            fe::cellResponse(cq, uRot, *small, material::Kinematics::SmallStrain, {0, 0}, nullptr,
+                             f, nullptr);
             EXPECT_GT(f.norm(), 1e3);
         }
     }
@@ -144,28 +161,35 @@ TEST(ElementKernel, TangentIsConsistent)
 {
     const auto params = fsi::testing::elastic(1.0e6, 0.35);
     const auto tl = material::makeMaterial(params, material::Kinematics::TotalLagrangian);
-    for (TestCell cell : {TestCell::Tet10, TestCell::Hex20}) {
+    for (TestCell cell : {TestCell::Tet10, TestCell::Hex20})
+    {
         const mesh::Mesh m = skewedBlock(cell, {1, 1, 1});
         const int n = m.cells.numNodes(0);
         Eigen::Matrix3Xd X(3, n), u(3, n);
-        for (int a = 0; a < n; ++a) {
+        for (int a = 0; a < n; ++a)
+        {
             X.col(a) = m.nodes.col(m.cells.nodes(0)[a]);
-            u.col(a) = Eigen::Vector3d(0.1 * std::sin(3 * X(0, a)), 0.05 * X(0, a) * X(1, a), -0.08 * X(2, a) * X(2, a));
+            u.col(a) = Eigen::Vector3d(0.1 * std::sin(3 * X(0, a)), 0.05 * X(0, a) * X(1, a),
+                                       -0.08 * X(2, a) * X(2, a));
         }
         std::vector<double> data;
         fe::appendCellQuadrature(m.cells.types[0], X, data);
         fe::CellQuadrature cq{n, static_cast<int>(data.size()) / (1 + 4 * n), data.data()};
         Eigen::VectorXd f0, f1, f2;
         Eigen::MatrixXd K;
-        fe::cellResponse(cq, u, *tl, material::Kinematics::TotalLagrangian, {0, 0}, nullptr, f0, &K);
+        fe::cellResponse(cq, u, *tl, material::Kinematics::TotalLagrangian, {0, 0}, nullptr, f0,
+                         &K);
         const double h = 1e-7;
         double err = 0.0;
-        for (int j = 0; j < 3 * n; ++j) {
+        for (int j = 0; j < 3 * n; ++j)
+        {
             Eigen::Matrix3Xd up = u, um = u;
             up(j % 3, j / 3) += h;
             um(j % 3, j / 3) -= h;
-            fe::cellResponse(cq, up, *tl, material::Kinematics::TotalLagrangian, {0, 0}, nullptr, f1, nullptr);
-            fe::cellResponse(cq, um, *tl, material::Kinematics::TotalLagrangian, {0, 0}, nullptr, f2, nullptr);
+            fe::cellResponse(cq, up, *tl, material::Kinematics::TotalLagrangian, {0, 0}, nullptr,
+                             f1, nullptr);
+            fe::cellResponse(cq, um, *tl, material::Kinematics::TotalLagrangian, {0, 0}, nullptr,
+                             f2, nullptr);
             err = std::max(err, ((f1 - f2) / (2 * h) - K.col(j)).norm() / K.norm());
         }
         EXPECT_LT(err, 1e-7) << fsi::testing::testCellName(cell);
@@ -180,17 +204,20 @@ TEST(TotalLagrangian, NinetyDegreeRotationOfTheBlockIsStressFree)
     const auto params = fsi::testing::elastic(1.0e6, 0.3);
     const auto tl = material::makeMaterial(params, material::Kinematics::TotalLagrangian);
     const mesh::Mesh m = skewedBlock(TestCell::Tet10, {2, 2, 2});
-    const Eigen::Matrix3d R = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    const Eigen::Matrix3d R =
+        Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
     fe::ProblemDefinition p;
     p.kinematics = material::Kinematics::TotalLagrangian;
     fe::PrescribedDisplacement d;
     d.surface = "boundary";
-    d.field = [](const Eigen::Vector3d& X, double f) -> Eigen::Vector3d {
-        const Eigen::Matrix3d Rf = Eigen::AngleAxisd(f * M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    d.field = [](const Eigen::Vector3d& X, double f) -> Eigen::Vector3d
+    {
+        const Eigen::Matrix3d Rf =
+            Eigen::AngleAxisd(f * M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
         return (Rf - Eigen::Matrix3d::Identity()) * X;
     };
     p.displacements.push_back(d);
-    p.newton.residualTolerance = 1e-14;   // quadratic convergence: cheap to go to round-off
+    p.newton.residualTolerance = 1e-14; // quadratic convergence: cheap to go to round-off
     p.newton.maxIterations = 30;
     fe::StructuralSolver solver(MPI_COMM_WORLD, m, *tl, p);
     // the load factor is the rotation angle / 90 degrees. One solve at the full angle: the
@@ -198,7 +225,8 @@ TEST(TotalLagrangian, NinetyDegreeRotationOfTheBlockIsStressFree)
     const auto report = solver.solve({0, 0});
     ASSERT_TRUE(report.converged) << report.message;
     double err = 0.0;
-    for (int node = 0; node < m.numNodes(); ++node) {
+    for (int node = 0; node < m.numNodes(); ++node)
+    {
         const Eigen::Vector3d exact = (R - Eigen::Matrix3d::Identity()) * m.nodes.col(node);
         for (int i = 0; i < 3; ++i)
             err = std::max(err, std::abs(solver.displacement()[3 * node + i] - exact[i]));
@@ -208,7 +236,8 @@ TEST(TotalLagrangian, NinetyDegreeRotationOfTheBlockIsStressFree)
     double smax = 0.0;
     for (const auto& s : nodal)
         smax = std::max(smax, s.cwiseAbs().maxCoeff());
-    std::printf("90-degree rotation: %d Newton iterations, %d load cuts, max |u - u_rigid| %.2e m, max |sigma| %.2e Pa\n",
+    std::printf("90-degree rotation: %d Newton iterations, %d load cuts, max |u - u_rigid| %.2e m, "
+                "max |sigma| %.2e Pa\n",
                 report.newtonIterations, report.loadCuts, err, smax);
     EXPECT_LT(err, 1e-8);
     EXPECT_LT(smax, 1e-6 * 1e6);
@@ -220,12 +249,14 @@ TEST(Cantilever, CoarseTipDeflectionAndFactorizationReuse)
 {
     fsi::testing::BlockSpec spec;
     spec.size = {2.0, 0.1, 0.1};
-    spec.cells = {40, 1, 1};   // unstructured Tet10, h = 0.05
-    const std::string file = fsi::testing::makeBlockMesh(fsi::testing::tempFile("beam.msh"), TestCell::Tet10, spec);
+    spec.cells = {40, 1, 1}; // unstructured Tet10, h = 0.05
+    const std::string file =
+        fsi::testing::makeBlockMesh(fsi::testing::tempFile("beam.msh"), TestCell::Tet10, spec);
     const mesh::Mesh m = mesh::readGmsh(file, {"solid", {"x0", "x1"}}, true);
     const double E = 2e9, P = 1000.0, L = 2.0, h = 0.1, b = 0.1, I = b * h * h * h / 12, G = E / 2;
     const double timoshenko = P * L * L * L / (3 * E * I) + P * L / (5.0 / 6.0 * G * b * h);
-    const auto law = material::makeMaterial(fsi::testing::elastic(E, 0.0), material::Kinematics::SmallStrain);
+    const auto law =
+        material::makeMaterial(fsi::testing::elastic(E, 0.0), material::Kinematics::SmallStrain);
     fe::ProblemDefinition p;
     p.clamped = {"x0"};
     p.wetted = "x1";
@@ -252,7 +283,8 @@ TEST(Cantilever, CoarseTipDeflectionAndFactorizationReuse)
     loads.forces.assign(x.size(), 0.0);
     for (std::size_t k = 0; k < solver.wettedNodes().size(); ++k)
         loads.forces[3 * k + 1] = -P / solver.wettedNodes().size();
-    for (int level = 0; level < 3; ++level) {
+    for (int level = 0; level < 3; ++level)
+    {
         report = coupled.solve({double(level), level ? 1.0 : 0.0}, loads);
         ASSERT_TRUE(report.converged);
         coupled.acceptLevel();
@@ -273,7 +305,7 @@ TEST(Newton, StallIsReportedNotAccepted)
     fe::ProblemDefinition p;
     p.kinematics = material::Kinematics::TotalLagrangian;
     p.clamped = {"x0"};
-    p.tractions.push_back({"x1", Eigen::Vector3d(-5e6, 0, 0)});   // crushes the block
+    p.tractions.push_back({"x1", Eigen::Vector3d(-5e6, 0, 0)}); // crushes the block
     p.newton.maxIterations = 8;
     p.newton.maxLoadCuts = 2;
     fe::StructuralSolver solver(MPI_COMM_WORLD, m, *tl, p);

@@ -10,12 +10,14 @@
 
 using namespace fsi;
 
-namespace {
+namespace
+{
 
 double maxDifference(const std::vector<double>& a, const std::vector<double>& b)
 {
     double d = 0.0, scale = 0.0;
-    for (std::size_t i = 0; i < a.size(); ++i) {
+    for (std::size_t i = 0; i < a.size(); ++i)
+    {
         d = std::max(d, std::abs(a[i] - b[i]));
         scale = std::max(scale, std::abs(b[i]));
     }
@@ -27,7 +29,8 @@ mesh::Mesh beam(fsi::testing::TestCell cell)
     fsi::testing::BlockSpec spec;
     spec.size = {1.0, 0.1, 0.1};
     spec.cells = {cell == fsi::testing::TestCell::Tet10 ? 20 : 10, 2, 2};
-    const auto file = fsi::testing::makeBlockMesh(fsi::testing::tempFile("mpi_beam.msh"), cell, spec);
+    const auto file =
+        fsi::testing::makeBlockMesh(fsi::testing::tempFile("mpi_beam.msh"), cell, spec);
     return mesh::readGmsh(file, {"solid", {"x0", "x1"}}, true);
 }
 
@@ -36,7 +39,8 @@ std::vector<double> solveOn(MPI_Comm comm, const mesh::Mesh& m, const material::
 {
     fe::StructuralSolver solver(comm, m, law, p);
     ownedCells = solver.ownedCells();
-    for (int n = 0; n < levels; ++n) {
+    for (int n = 0; n < levels; ++n)
+    {
         const auto r = solver.solve({n * 0.5, n ? 0.5 : 0.0});
         EXPECT_TRUE(r.converged) << r.message;
         solver.acceptLevel();
@@ -58,12 +62,17 @@ TEST(Parallel, SameAnswerAsOneRank)
         bool viscoelastic;
         double load;
     };
-    for (const Case& c : {Case{"Tet10 small strain", fsi::testing::TestCell::Tet10, material::Kinematics::SmallStrain, false, -1e3},
-                          Case{"Hex20 total Lagrangian", fsi::testing::TestCell::Hex20, material::Kinematics::TotalLagrangian, false, -2e5},
-                          Case{"Tet10 viscoelastic, 4 levels", fsi::testing::TestCell::Tet10, material::Kinematics::SmallStrain, true, -1e3}}) {
+    for (const Case& c : {Case{"Tet10 small strain", fsi::testing::TestCell::Tet10,
+                               material::Kinematics::SmallStrain, false, -1e3},
+                          Case{"Hex20 total Lagrangian", fsi::testing::TestCell::Hex20,
+                               material::Kinematics::TotalLagrangian, false, -2e5},
+                          Case{"Tet10 viscoelastic, 4 levels", fsi::testing::TestCell::Tet10,
+                               material::Kinematics::SmallStrain, true, -1e3}})
+    {
         const mesh::Mesh m = beam(c.cell);
         material::MaterialParameters mp = fsi::testing::elastic(1e9, 0.3);
-        if (c.viscoelastic) {
+        if (c.viscoelastic)
+        {
             mp.type = "viscoelastic";
             mp.modulusBasis = "long-term";
             mp.pronyConvention = "long-term-gamma";
@@ -87,14 +96,16 @@ TEST(Parallel, SameAnswerAsOneRank)
         MPI_Allreduce(&ownedParallel, &total, 1, MPI_INT, MPI_SUM, MPI_COMM_WORLD);
         EXPECT_EQ(total, m.cells.size());
         EXPECT_EQ(ownedSerial, m.cells.size());
-        if (ranks > 1)
+        if (ranks > 1) {
             EXPECT_LT(ownedParallel, m.cells.size());
+        }
         const double diff = maxDifference(parallel, serial);
         int rank = 0;
         MPI_Comm_rank(MPI_COMM_WORLD, &rank);
         if (rank == 0)
-            std::printf("%-30s %d rank(s), %d of %d cells on rank 0: max |u_par - u_1| / max|u| = %.2e\n",
-                        c.name, ranks, ownedParallel, m.cells.size(), diff);
+            std::printf(
+                "%-30s %d rank(s), %d of %d cells on rank 0: max |u_par - u_1| / max|u| = %.2e\n",
+                c.name, ranks, ownedParallel, m.cells.size(), diff);
         EXPECT_LT(diff, 1e-9) << c.name;
     }
 }

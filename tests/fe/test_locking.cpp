@@ -9,22 +9,31 @@
 
 using namespace fsi;
 
-namespace {
+namespace
+{
 
-enum class Kind { Tet4, Tet10, Hex8, Hex20 };
+enum class Kind
+{
+    Tet4,
+    Tet10,
+    Hex8,
+    Hex20
+};
 
 std::string cookMesh(Kind kind, int n)
 {
     const bool hex = kind == Kind::Hex8 || kind == Kind::Hex20;
     const bool quadratic = kind == Kind::Tet10 || kind == Kind::Hex20;
-    const std::string path = fsi::testing::tempFile("cook_" + std::to_string(int(kind)) + "_" + std::to_string(n) + ".msh");
+    const std::string path = fsi::testing::tempFile("cook_" + std::to_string(int(kind)) + "_" +
+                                                    std::to_string(n) + ".msh");
     gmsh::initialize(0, nullptr, false);
     gmsh::option::setNumber("General.Terminal", 0);
     gmsh::model::add("cook");
     const int p1 = gmsh::model::geo::addPoint(0, 0, 0), p2 = gmsh::model::geo::addPoint(48, 44, 0),
               p3 = gmsh::model::geo::addPoint(48, 60, 0), p4 = gmsh::model::geo::addPoint(0, 44, 0);
-    const std::vector<int> l = {gmsh::model::geo::addLine(p1, p2), gmsh::model::geo::addLine(p2, p3),
-                                gmsh::model::geo::addLine(p3, p4), gmsh::model::geo::addLine(p4, p1)};
+    const std::vector<int> l = {
+        gmsh::model::geo::addLine(p1, p2), gmsh::model::geo::addLine(p2, p3),
+        gmsh::model::geo::addLine(p3, p4), gmsh::model::geo::addLine(p4, p1)};
     const int s = gmsh::model::geo::addPlaneSurface({gmsh::model::geo::addCurveLoop(l)});
     for (int c : l)
         gmsh::model::geo::mesh::setTransfiniteCurve(c, n + 1);
@@ -54,8 +63,10 @@ std::string cookMesh(Kind kind, int n)
 
 double cookTip(Kind kind, int n, double nu)
 {
-    const mesh::Mesh m = mesh::readGmsh(cookMesh(kind, n), {"solid", {"clamped", "load", "faces"}}, true);
-    const auto law = material::makeMaterial(fsi::testing::elastic(250.0, nu), material::Kinematics::SmallStrain);
+    const mesh::Mesh m =
+        mesh::readGmsh(cookMesh(kind, n), {"solid", {"clamped", "load", "faces"}}, true);
+    const auto law =
+        material::makeMaterial(fsi::testing::elastic(250.0, nu), material::Kinematics::SmallStrain);
     fe::ProblemDefinition p;
     p.clamped = {"clamped"};
     p.tractions.push_back({"load", Eigen::Vector3d(0, 1.0 / 16.0, 0)});
@@ -84,7 +95,8 @@ TEST(Locking, CookMembraneNearlyIncompressible)
     const double ref = uy[Kind::Hex20].back();
     std::printf("Cook's membrane, plane strain, E = 250, nu = 0.4999, F = 1: u_y(C)\n");
     std::printf("  n x n    Tet4        Tet10       Hex8        Hex20      (rel. to Hex20 n=16)\n");
-    for (std::size_t i = 0; i < levels.size(); ++i) {
+    for (std::size_t i = 0; i < levels.size(); ++i)
+    {
         std::printf("  %2d      ", levels[i]);
         for (Kind k : {Kind::Tet4, Kind::Tet10, Kind::Hex8, Kind::Hex20})
             std::printf("%.5f %+5.1f%%  ", uy[k][i], 100 * (uy[k][i] - ref) / ref);
@@ -92,11 +104,13 @@ TEST(Locking, CookMembraneNearlyIncompressible)
     }
     (void)names;
     // quadratic elements: converge (differences shrink) to a common value (< 1 %)
-    for (Kind k : {Kind::Tet10, Kind::Hex20}) {
+    for (Kind k : {Kind::Tet10, Kind::Hex20})
+    {
         const auto& v = uy[k];
         EXPECT_LT(std::abs(v[3] - v[2]), std::abs(v[2] - v[1]));
         EXPECT_LT(std::abs(v[3] - ref) / ref, 0.01);
-        EXPECT_LT(std::abs(v[1] - ref) / ref, 0.10);   // within 10 % on a 4 x 4 mesh (singular corners)
+        EXPECT_LT(std::abs(v[1] - ref) / ref,
+                  0.10); // within 10 % on a 4 x 4 mesh (singular corners)
     }
     // the linear elements lock: far too stiff on the 8 x 8 mesh
     EXPECT_LT(uy[Kind::Hex8][2], 0.8 * ref);

@@ -11,18 +11,23 @@
 using namespace fsi;
 using fsi::testing::TestCell;
 
-namespace {
+namespace
+{
 std::string tempPath(const std::string& name)
 {
-    auto dir = std::filesystem::temp_directory_path() / ("fsi_test_mesh_" + std::to_string(::getpid()));
+    auto dir =
+        std::filesystem::temp_directory_path() / ("fsi_test_mesh_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     return (dir / name).string();
 }
 std::string errorOf(const std::function<void()>& f)
 {
-    try {
+    try
+    {
         f();
-    } catch (const std::exception& e) {
+    }
+    catch (const std::exception& e)
+    {
         return e.what();
     }
     return "";
@@ -33,7 +38,8 @@ std::string errorOf(const std::function<void()>& f)
 TEST(ReferenceElement, MatchesGmshAndIsNodal)
 {
     gmsh::initialize(0, nullptr, false);
-    for (int gmshType : {2, 9, 3, 16, 10, 4, 11, 5, 17, 12, 6, 18, 13}) {
+    for (int gmshType : {2, 9, 3, 16, 10, 4, 11, 5, 17, 12, 6, 18, 13})
+    {
         mesh::CellType type;
         ASSERT_TRUE(mesh::cellTypeFromGmsh(gmshType, type));
         const auto& ref = mesh::ReferenceElement::get(type);
@@ -48,11 +54,12 @@ TEST(ReferenceElement, MatchesGmshAndIsNodal)
                 EXPECT_DOUBLE_EQ(c[a * dim + k], ref.node(a)[k]) << name << " node " << a;
         Eigen::VectorXd N;
         Eigen::MatrixXd dN;
-        for (int a = 0; a < nn; ++a) {
+        for (int a = 0; a < nn; ++a)
+        {
             ref.evaluate(ref.node(a), N, dN);
             for (int b = 0; b < nn; ++b)
                 EXPECT_NEAR(N[b], a == b ? 1.0 : 0.0, 1e-12) << name;
-            EXPECT_NEAR(dN.colwise().sum().norm(), 0.0, 1e-11) << name;   // partition of unity
+            EXPECT_NEAR(dN.colwise().sum().norm(), 0.0, 1e-11) << name; // partition of unity
         }
     }
     gmsh::finalize();
@@ -61,7 +68,8 @@ TEST(ReferenceElement, MatchesGmshAndIsNodal)
 TEST(GmshReader, ReadsV2AndV4WithGroups)
 {
     for (double version : {2.2, 4.1})
-        for (TestCell cell : {TestCell::Tet10, TestCell::Hex20, TestCell::Hex27, TestCell::Tet4}) {
+        for (TestCell cell : {TestCell::Tet10, TestCell::Hex20, TestCell::Hex27, TestCell::Tet4})
+        {
             fsi::testing::BlockSpec spec;
             spec.mshVersion = version;
             const std::string file = fsi::testing::makeBlockMesh(tempPath("block.msh"), cell, spec);
@@ -81,13 +89,19 @@ TEST(GmshReader, ReadsV2AndV4WithGroups)
 TEST(GmshReader, MissingGroupIsOneLineNamingFileAndGroup)
 {
     const std::string file = fsi::testing::makeBlockMesh(tempPath("g.msh"), TestCell::Tet10);
-    const std::string msg = errorOf([&] { mesh::readGmsh(file, {"solid", {"x0", "wetted"}}, true); });
+    const std::string msg = errorOf(
+        [&] {
+            mesh::readGmsh(file, {"solid", {"x0", "wetted"}}, true);
+        });
     EXPECT_NE(msg.find(file), std::string::npos) << msg;
     EXPECT_NE(msg.find("'wetted'"), std::string::npos) << msg;
     EXPECT_EQ(msg.find('\n'), std::string::npos);
     const std::string vol = errorOf([&] { mesh::readGmsh(file, {"body", {}}, true); });
     EXPECT_NE(vol.find("'body'"), std::string::npos) << vol;
-    const std::string missing = errorOf([&] { mesh::readGmsh(tempPath("none.msh"), {"solid", {}}, true); });
+    const std::string missing = errorOf(
+        [&] {
+            mesh::readGmsh(tempPath("none.msh"), {"solid", {}}, true);
+        });
     EXPECT_NE(missing.find("none.msh"), std::string::npos) << missing;
 }
 
@@ -95,9 +109,10 @@ TEST(GmshReader, InvertedCellIsAnError)
 {
     // one Tet4 with a left-handed node order
     const std::string file = tempPath("inverted.msh");
-    std::ofstream(file) << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n1\n3 1 \"solid\"\n"
-                           "$EndPhysicalNames\n$Nodes\n4\n1 0 0 0\n2 0 1 0\n3 1 0 0\n4 0 0 1\n$EndNodes\n"
-                           "$Elements\n1\n1 4 2 1 1 1 2 3 4\n$EndElements\n";
+    std::ofstream(file)
+        << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n1\n3 1 \"solid\"\n"
+           "$EndPhysicalNames\n$Nodes\n4\n1 0 0 0\n2 0 1 0\n3 1 0 0\n4 0 0 1\n$EndNodes\n"
+           "$Elements\n1\n1 4 2 1 1 1 2 3 4\n$EndElements\n";
     const std::string msg = errorOf([&] { mesh::readGmsh(file, {"solid", {}}, true); });
     EXPECT_NE(msg.find("inverted"), std::string::npos) << msg;
     EXPECT_NE(msg.find(file), std::string::npos) << msg;
@@ -116,8 +131,10 @@ TEST(Mesh, NearestNode)
 TEST(ConvertMesh, AbaqusInpKeepsGroups)
 {
     const std::string out = tempPath("converted.msh");
-    const std::string cmd = "/usr/bin/python3 " FSI_SOURCE_DIR "/scripts/convert-mesh " FSI_SOURCE_DIR
-                            "/tests/mesh/abaqus_c3d20_cube.inp " + out + " > /dev/null 2>&1";
+    const std::string cmd = "/usr/bin/python3 " FSI_SOURCE_DIR
+                            "/scripts/convert-mesh " FSI_SOURCE_DIR
+                            "/tests/mesh/abaqus_c3d20_cube.inp " +
+                            out + " > /dev/null 2>&1";
     if (std::system("/usr/bin/python3 -c 'import meshio' > /dev/null 2>&1") != 0)
         GTEST_SKIP() << "python3-meshio not installed";
     ASSERT_EQ(std::system(cmd.c_str()), 0);
@@ -136,7 +153,8 @@ TEST(ConvertMesh, AbaqusInpKeepsGroups)
 
 TEST(GmshReader, Prisms)
 {
-    for (int q : {0, 15, 18}) {
+    for (int q : {0, 15, 18})
+    {
         const std::string file = fsi::testing::makePrismBlock(tempPath("prisms.msh"), q);
         const mesh::Mesh m = mesh::readGmsh(file, {"solid", {"x0", "boundary"}}, true);
         const std::string name = q == 0 ? "Prism6" : q == 15 ? "Prism15" : "Prism18";

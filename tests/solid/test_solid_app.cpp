@@ -11,20 +11,24 @@
 
 namespace fs = std::filesystem;
 
-namespace {
+namespace
+{
 
 fs::path dir()
 {
-    static const fs::path d = [] {
+    static const fs::path d = []
+    {
         auto p = fs::temp_directory_path() / ("fsi_test_solid_app_" + std::to_string(::getpid()));
         fs::create_directories(p);
         fsi::testing::BlockSpec spec;
         spec.size = {1.0, 0.2, 0.2};
         spec.cells = {5, 1, 1};
-        fsi::testing::makeBlockMesh((p / "block.msh").string(), fsi::testing::TestCell::Tet10, spec);
+        fsi::testing::makeBlockMesh((p / "block.msh").string(), fsi::testing::TestCell::Tet10,
+                                    spec);
         // a mesh with one inverted tetrahedron
         std::ofstream(p / "inverted.msh")
-            << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n2\n2 2 \"x0\"\n3 1 \"solid\"\n"
+            << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n2\n2 2 \"x0\"\n3 1 "
+               "\"solid\"\n"
                "$EndPhysicalNames\n$Nodes\n4\n1 0 0 0\n2 0 1 0\n3 1 0 0\n4 0 0 1\n$EndNodes\n"
                "$Elements\n2\n1 2 2 2 2 1 2 4\n2 4 2 1 1 1 2 3 4\n$EndElements\n";
         return p;
@@ -56,8 +60,9 @@ Result runApp(const std::string& configText, const std::string& name = "case.yam
     const fs::path cfg = dir() / name;
     std::ofstream(cfg) << configText;
     const fs::path err = dir() / (name + ".stderr");
-    const std::string cmd = std::string(SOLID_APP) + " " + cfg.string() + " --out " + (dir() / (name + ".out")).string() +
-                            " > " + (dir() / (name + ".stdout")).string() + " 2> " + err.string();
+    const std::string cmd = std::string(SOLID_APP) + " " + cfg.string() + " --out " +
+                            (dir() / (name + ".out")).string() + " > " +
+                            (dir() / (name + ".stdout")).string() + " 2> " + err.string();
     const int raw = std::system(cmd.c_str());
     std::ifstream in(err);
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -89,45 +94,56 @@ TEST(SolidApp, GoodRunWritesEchoVtuPvdCsv)
     const Result r = runApp(good, "good.yaml");
     EXPECT_EQ(r.status, 0) << r.stderrText;
     const fs::path out = dir() / "good.yaml.out";
-    for (const char* f : {"config.echo.yaml", "solid.pvd", "solid_00000.vtu", "solid_00002.vtu", "history.csv", "levels.csv"})
+    for (const char* f : {"config.echo.yaml", "solid.pvd", "solid_00000.vtu", "solid_00002.vtu",
+                          "history.csv", "levels.csv"})
         EXPECT_TRUE(fs::exists(out / f)) << f;
     std::ifstream csv(out / "history.csv");
     std::string line;
     int rows = 0;
     while (std::getline(csv, line))
         ++rows;
-    EXPECT_EQ(rows, 4);   // header + 3 levels
+    EXPECT_EQ(rows, 4); // header + 3 levels
     std::ifstream so(dir() / "good.yaml.stdout");
     std::string text((std::istreambuf_iterator<char>(so)), std::istreambuf_iterator<char>());
-    EXPECT_NE(text.find("newton  1"), std::string::npos);   // iterations and residuals printed
-    EXPECT_NE(text.find("kinematics: total-lagrangian"), std::string::npos);   // config echo
+    EXPECT_NE(text.find("newton  1"), std::string::npos); // iterations and residuals printed
+    EXPECT_NE(text.find("kinematics: total-lagrangian"), std::string::npos); // config echo
 }
 
 TEST(SolidApp, BadInputIsOneLineAndNonZeroExit)
 {
-    expectOneLineError(runApp(replaced(good, "material:", "materail:"), "typo.yaml"), "typo.yaml", "'materail'");
-    expectOneLineError(runApp(replaced(good, "  kinematics: total-lagrangian\n", ""), "missing.yaml"), "missing.yaml",
-                       "'kinematics'");
-    expectOneLineError(runApp(replaced(good, "wetted: x1", "wetted: interface"), "group.yaml"), "block.msh", "'interface'");
+    expectOneLineError(runApp(replaced(good, "material:", "materail:"), "typo.yaml"), "typo.yaml",
+                       "'materail'");
+    expectOneLineError(
+        runApp(replaced(good, "  kinematics: total-lagrangian\n", ""), "missing.yaml"),
+        "missing.yaml", "'kinematics'");
+    expectOneLineError(runApp(replaced(good, "wetted: x1", "wetted: interface"), "group.yaml"),
+                       "block.msh", "'interface'");
     expectOneLineError(runApp(replaced(good, "nu: 0.3", "nu: 0.5"), "nu.yaml"), "nu.yaml", "nu");
-    expectOneLineError(runApp(replaced(good, "E: 1.0e7", "E: -1.0e7"), "negative.yaml"), "negative.yaml", "E");
-    expectOneLineError(runApp(replaced(good, "{type: linear-elastic, E: 1.0e7,",
-                                       "{type: viscoelastic, modulus_basis: long-term, prony: {convention: abaqus-g, "
-                                       "coefficients: [0.2], times: [0.0]}, E: 1.0e7,"),
-                              "tau.yaml"),
-                       "tau.yaml", "times");
+    expectOneLineError(runApp(replaced(good, "E: 1.0e7", "E: -1.0e7"), "negative.yaml"),
+                       "negative.yaml", "E");
+    expectOneLineError(
+        runApp(
+            replaced(good, "{type: linear-elastic, E: 1.0e7,",
+                     "{type: viscoelastic, modulus_basis: long-term, prony: {convention: abaqus-g, "
+                     "coefficients: [0.2], times: [0.0]}, E: 1.0e7,"),
+            "tau.yaml"),
+        "tau.yaml", "times");
     expectOneLineError(runApp(replaced(good, "dt: 0.5", "dt: -1"), "dt.yaml"), "dt.yaml", "dt");
-    expectOneLineError(runApp(replaced(replaced(good, "block.msh", "inverted.msh"), "wetted: x1", "wetted: x0"),
-                              "inverted.yaml"),
-                       "inverted.msh", "inverted");
-    expectOneLineError(runApp(replaced(good, "E: 1.0e7", "E: [1]"), "type.yaml"), "type.yaml", "must be a number");
-    expectOneLineError(runApp(replaced(good, "block.msh", "nothere.msh"), "nomesh.yaml"), "nothere.msh", "cannot open");
+    expectOneLineError(
+        runApp(replaced(replaced(good, "block.msh", "inverted.msh"), "wetted: x1", "wetted: x0"),
+               "inverted.yaml"),
+        "inverted.msh", "inverted");
+    expectOneLineError(runApp(replaced(good, "E: 1.0e7", "E: [1]"), "type.yaml"), "type.yaml",
+                       "must be a number");
+    expectOneLineError(runApp(replaced(good, "block.msh", "nothere.msh"), "nomesh.yaml"),
+                       "nothere.msh", "cannot open");
 }
 
 TEST(SolidApp, UsageErrors)
 {
     const int raw = std::system((std::string(SOLID_APP) + " > /dev/null 2>&1").c_str());
     EXPECT_NE(WEXITSTATUS(raw), 0);
-    const int raw2 = std::system((std::string(SOLID_APP) + " a.yaml --bogus > /dev/null 2>&1").c_str());
+    const int raw2 =
+        std::system((std::string(SOLID_APP) + " a.yaml --bogus > /dev/null 2>&1").c_str());
     EXPECT_NE(WEXITSTATUS(raw2), 0);
 }

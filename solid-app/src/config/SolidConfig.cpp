@@ -8,10 +8,12 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace fsi::config {
+namespace fsi::config
+{
 namespace fs = std::filesystem;
 
-namespace {
+namespace
+{
 std::string resolve(const std::string& path, const std::string& dir)
 {
     fs::path p(path);
@@ -37,21 +39,23 @@ material::MaterialParameters parseMaterial(const Block& b)
     m.file = fs::path(b.file()).filename().string();
     m.keyPrefix = b.path();
     m.type = b.choice("type", {"linear-elastic", "neo-hookean", "viscoelastic"});
-    auto optionalNumber = [&b](const char* key) {
-        return b.has(key) ? std::optional<double>(b.number(key)) : std::nullopt;
-    };
+    auto optionalNumber = [&b](const char* key)
+    { return b.has(key) ? std::optional<double>(b.number(key)) : std::nullopt; };
     m.youngsModulus = optionalNumber("E");
     m.poissonRatio = optionalNumber("nu");
     m.bulkModulus = optionalNumber("K");
     m.shearModulus = optionalNumber("G");
-    if (m.type == "viscoelastic") {
+    if (m.type == "viscoelastic")
+    {
         m.modulusBasis = b.choice("modulus_basis", {"long-term", "instantaneous"});
         const Block prony = b.block("prony");
         prony.allowOnly({"convention", "coefficients", "times"});
         m.pronyConvention = prony.choice("convention", {"long-term-gamma", "abaqus-g"});
         m.pronyCoefficients = prony.numbers("coefficients");
         m.pronyTimes = prony.numbers("times");
-    } else {
+    }
+    else
+    {
         if (b.has("prony"))
             b.fail("prony", "is only for type viscoelastic (remove it)");
         if (b.has("modulus_basis"))
@@ -86,12 +90,14 @@ LoadParameters LoadParameters::parse(const Block& b)
 {
     b.allowOnly({"gravity", "displacements", "tractions", "forces"});
     LoadParameters p;
-    if (b.has("gravity")) {
+    if (b.has("gravity"))
+    {
         p.gravity = b.vector3("gravity");
         p.hasGravity = true;
     }
     if (b.has("displacements"))
-        for (const Block& d : b.blockList("displacements")) {
+        for (const Block& d : b.blockList("displacements"))
+        {
             d.allowOnly({"surface", "x", "y", "z"});
             DisplacementLoad load;
             load.surface = d.text("surface");
@@ -104,12 +110,14 @@ LoadParameters LoadParameters::parse(const Block& b)
             p.displacements.push_back(load);
         }
     if (b.has("tractions"))
-        for (const Block& t : b.blockList("tractions")) {
+        for (const Block& t : b.blockList("tractions"))
+        {
             t.allowOnly({"surface", "traction"});
             p.tractions.push_back({t.text("surface"), t.vector3("traction")});
         }
     if (b.has("forces"))
-        for (const Block& f : b.blockList("forces")) {
+        for (const Block& f : b.blockList("forces"))
+        {
             f.allowOnly({"surface", "total"});
             p.forces.push_back({f.text("surface"), f.vector3("total")});
         }
@@ -123,7 +131,8 @@ double TimeParameters::factorAt(double t) const
     if (t <= loadFactor.front()[0])
         return loadFactor.front()[1];
     for (std::size_t i = 1; i < loadFactor.size(); ++i)
-        if (t <= loadFactor[i][0]) {
+        if (t <= loadFactor[i][0])
+        {
             const auto& a = loadFactor[i - 1];
             const auto& b = loadFactor[i];
             return a[1] + (b[1] - a[1]) * (t - a[0]) / (b[0] - a[0]);
@@ -153,8 +162,10 @@ TimeParameters TimeParameters::parse(const Block& b)
         b.fail("dt", "must be > 0 [s]");
     if (!(p.end >= 0.0))
         b.fail("end", "must be >= 0 [s]");
-    if (b.has("load_factor")) {
-        for (const auto& row : b.table("load_factor")) {
+    if (b.has("load_factor"))
+    {
+        for (const auto& row : b.table("load_factor"))
+        {
             if (row.size() != 2)
                 b.fail("load_factor", "rows must be [time, factor]");
             if (!p.loadFactor.empty() && !(row[0] > p.loadFactor.back()[0]))
@@ -176,7 +187,8 @@ OutputParameters OutputParameters::parse(const Block& b, const std::string& conf
     if (p.every < 1)
         b.fail("every", "must be >= 1");
     if (b.has("watch"))
-        for (const Block& w : b.blockList("watch")) {
+        for (const Block& w : b.blockList("watch"))
+        {
             w.allowOnly({"name", "point"});
             p.watch.push_back({w.text("name"), w.vector3("point")});
         }
@@ -192,7 +204,8 @@ SolidConfig SolidConfig::load(const std::string& file)
     c.file = file;
     c.hasCoupling = root.has("coupling");
     const Block s = root.block("solid");
-    s.allowOnly({"mesh", "material", "kinematics", "newton", "linear_solver", "loads", "time", "output"});
+    s.allowOnly(
+        {"mesh", "material", "kinematics", "newton", "linear_solver", "loads", "time", "output"});
     c.mesh = MeshParameters::parse(s.block("mesh"), dir);
     const Block m = s.block("material");
     c.material = parseMaterial(m);
@@ -206,7 +219,8 @@ SolidConfig SolidConfig::load(const std::string& file)
         s.fail("kinematics", "must be total-lagrangian for a neo-hookean material");
     if (auto n = s.optionalBlock("newton"))
         c.newton = NewtonParameters::parse(*n);
-    if (auto l = s.optionalBlock("linear_solver")) {
+    if (auto l = s.optionalBlock("linear_solver"))
+    {
         l->allowOnly({"verbosity"});
         c.solverVerbosity = l->integer("verbosity", 0);
     }
@@ -220,20 +234,23 @@ SolidConfig SolidConfig::load(const std::string& file)
     else
         c.output.folder = resolve(c.output.folder, dir);
     if (c.mesh.clamped.empty() && c.loads.displacements.empty())
-        s.fail("mesh.clamped", "missing: give clamped surfaces or loads.displacements (rigid-body motion is singular)");
+        s.fail("mesh.clamped", "missing: give clamped surfaces or loads.displacements (rigid-body "
+                               "motion is singular)");
     return c;
 }
 
 std::string SolidConfig::echo() const
 {
     std::ostringstream o;
-    auto vec = [](const std::array<double, 3>& v) {
+    auto vec = [](const std::array<double, 3>& v)
+    {
         std::ostringstream s;
         s << "[" << v[0] << ", " << v[1] << ", " << v[2] << "]";
         return s.str();
     };
     o << "# resolved solid configuration (from " << file << ")\n";
-    o << "solid:\n  mesh:\n    file: " << mesh.file << "\n    volume: " << mesh.volume << "\n    clamped: [";
+    o << "solid:\n  mesh:\n    file: " << mesh.file << "\n    volume: " << mesh.volume
+      << "\n    clamped: [";
     for (std::size_t i = 0; i < mesh.clamped.size(); ++i)
         o << (i ? ", " : "") << mesh.clamped[i];
     o << "]\n    wetted: '" << mesh.wetted << "'\n";
@@ -242,7 +259,8 @@ std::string SolidConfig::echo() const
     for (std::string line; std::getline(d, line);)
         o << "    # " << line << "\n";
     o << "  kinematics: "
-      << (kinematics == material::Kinematics::SmallStrain ? "small-strain" : "total-lagrangian") << "\n";
+      << (kinematics == material::Kinematics::SmallStrain ? "small-strain" : "total-lagrangian")
+      << "\n";
     o << "  newton: {max_iterations: " << newton.maxIterations
       << ", residual_tolerance: " << newton.residualTolerance
       << ", absolute_tolerance: " << newton.absoluteTolerance
@@ -251,7 +269,8 @@ std::string SolidConfig::echo() const
     o << "  loads:\n";
     if (loads.hasGravity)
         o << "    gravity: " << vec(loads.gravity) << "\n";
-    for (const auto& dl : loads.displacements) {
+    for (const auto& dl : loads.displacements)
+    {
         o << "    - displacement: {surface: " << dl.surface;
         const char* n[3] = {"x", "y", "z"};
         for (int c = 0; c < 3; ++c)
@@ -260,16 +279,20 @@ std::string SolidConfig::echo() const
         o << "}\n";
     }
     for (const auto& t : loads.tractions)
-        o << "    - traction: {surface: " << t.surface << ", traction: " << vec(t.traction) << "}\n";
+        o << "    - traction: {surface: " << t.surface << ", traction: " << vec(t.traction)
+          << "}\n";
     for (const auto& f : loads.forces)
         o << "    - force: {surface: " << f.surface << ", total: " << vec(f.total) << "}\n";
-    if (time.present) {
-        o << "  time: {dt: " << time.dt << ", end: " << time.end << ", levels: " << time.levels().size()
-          << ", load_factor: [";
+    if (time.present)
+    {
+        o << "  time: {dt: " << time.dt << ", end: " << time.end
+          << ", levels: " << time.levels().size() << ", load_factor: [";
         for (std::size_t i = 0; i < time.loadFactor.size(); ++i)
-            o << (i ? ", " : "") << "[" << time.loadFactor[i][0] << ", " << time.loadFactor[i][1] << "]";
+            o << (i ? ", " : "") << "[" << time.loadFactor[i][0] << ", " << time.loadFactor[i][1]
+              << "]";
         o << "]}\n";
-    } else
+    }
+    else
         o << "  # no time block: one static level\n";
     o << "  output: {folder: " << output.folder << ", vtu: " << (output.vtu ? "true" : "false")
       << ", format: " << (output.binary ? "binary" : "ascii") << ", every: " << output.every

@@ -10,50 +10,51 @@
 #include <string>
 #include <vector>
 
-namespace fsi::config {
+namespace fsi::config
+{
 
 class Block;
 
 struct MeshParameters
 {
-    std::string file;                       // resolved against the config file's folder
-    std::string volume;                     // volume physical group
-    std::vector<std::string> clamped;       // surface groups with all dofs fixed
-    std::string wetted;                     // interface surface group ("" = none)
+    std::string file;                 // resolved against the config file's folder
+    std::string volume;               // volume physical group
+    std::vector<std::string> clamped; // surface groups with all dofs fixed
+    std::string wetted;               // interface surface group ("" = none)
     static MeshParameters parse(const Block& b, const std::string& configDir);
 };
 
 struct NewtonParameters
 {
     int maxIterations = 25;
-    double residualTolerance = 1e-8;    // relative to the reference force norm
-    double absoluteTolerance = 1e-10;   // [N]
+    double residualTolerance = 1e-8;  // relative to the reference force norm
+    double absoluteTolerance = 1e-10; // [N]
     bool lineSearch = true;
-    int maxLoadCuts = 6;                // load sub-stepping: halve up to this many times
+    int maxLoadCuts = 6; // load sub-stepping: halve up to this many times
     static NewtonParameters parse(const Block& b);
 };
 
 struct DisplacementLoad
 {
     std::string surface;
-    std::array<std::optional<double>, 3> value;   // [m] per component (unset = free)
+    std::array<std::optional<double>, 3> value; // [m] per component (unset = free)
 };
 
 struct TractionLoad
 {
     std::string surface;
-    std::array<double, 3> traction{};             // [Pa] on the reference area (dead load)
+    std::array<double, 3> traction{}; // [Pa] on the reference area (dead load)
 };
 
 struct NodalForceLoad
 {
     std::string surface;
-    std::array<double, 3> total{};                // [N], split over the surface nodes by area
+    std::array<double, 3> total{}; // [N], split over the surface nodes by area
 };
 
 struct LoadParameters
 {
-    std::array<double, 3> gravity{};              // [m/s^2], needs solid.material.density
+    std::array<double, 3> gravity{}; // [m/s^2], needs solid.material.density
     bool hasGravity = false;
     std::vector<DisplacementLoad> displacements;
     std::vector<TractionLoad> tractions;
@@ -65,12 +66,12 @@ struct LoadParameters
 // loads(t) = loadFactor(t) * configured loads; loadFactor piecewise linear in t.
 struct TimeParameters
 {
-    bool present = false;      // no time block: one static level at t = 0
+    bool present = false; // no time block: one static level at t = 0
     double dt = 0.0;
     double end = 0.0;
-    std::vector<std::array<double, 2>> loadFactor;   // (t, factor), t increasing
+    std::vector<std::array<double, 2>> loadFactor; // (t, factor), t increasing
     double factorAt(double t) const;
-    std::vector<double> levels() const;              // t_0 = 0, t_1, ...
+    std::vector<double> levels() const; // t_0 = 0, t_1, ...
     static TimeParameters parse(const Block& b);
 };
 
@@ -95,14 +96,14 @@ struct SolidConfig
     std::string file;
     MeshParameters mesh;
     material::MaterialParameters material;
-    double density = 0.0;                       // [kg/m^3]
+    double density = 0.0; // [kg/m^3]
     material::Kinematics kinematics = material::Kinematics::SmallStrain;
     NewtonParameters newton;
     int solverVerbosity = 0;
     LoadParameters loads;
     TimeParameters time;
     OutputParameters output;
-    bool hasCoupling = false;                   // top-level `coupling:` block present (driver)
+    bool hasCoupling = false; // top-level `coupling:` block present (driver)
 
     // Reads and validates `file`. Throws std::runtime_error (one line: file, key, fix).
     static SolidConfig load(const std::string& file);

@@ -7,17 +7,23 @@
 #include <filesystem>
 #include <stdexcept>
 
-namespace fsi::config {
-namespace {
+namespace fsi::config
+{
+namespace
+{
 
-std::string baseName(const std::string& file) { return std::filesystem::path(file).filename().string(); }
+std::string baseName(const std::string& file)
+{
+    return std::filesystem::path(file).filename().string();
+}
 
 std::size_t editDistance(const std::string& a, const std::string& b)
 {
     std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
     for (std::size_t j = 0; j <= b.size(); ++j)
         prev[j] = j;
-    for (std::size_t i = 1; i <= a.size(); ++i) {
+    for (std::size_t i = 1; i <= a.size(); ++i)
+    {
         cur[0] = i;
         for (std::size_t j = 1; j <= b.size(); ++j)
             cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] != b[j - 1])});
@@ -32,9 +38,11 @@ std::string closestMatch(const std::string& word, const std::vector<std::string>
 {
     std::string best;
     std::size_t bestDistance = std::max<std::size_t>(2, word.size() / 3) + 1;
-    for (const auto& c : candidates) {
+    for (const auto& c : candidates)
+    {
         const std::size_t d = editDistance(word, c);
-        if (d < bestDistance) {
+        if (d < bestDistance)
+        {
             bestDistance = d;
             best = c;
         }
@@ -46,7 +54,10 @@ Block::Block(std::string file, std::string path, const YAML::Node& node)
     : file_(std::move(file)), path_(std::move(path)), node_(std::make_unique<YAML::Node>(node))
 {
 }
-Block::Block(const Block& o) : file_(o.file_), path_(o.path_), node_(std::make_unique<YAML::Node>(*o.node_)) {}
+Block::Block(const Block& o)
+    : file_(o.file_), path_(o.path_), node_(std::make_unique<YAML::Node>(*o.node_))
+{
+}
 Block& Block::operator=(const Block& o)
 {
     file_ = o.file_;
@@ -59,11 +70,16 @@ Block::~Block() = default;
 Block Block::load(const std::string& file)
 {
     YAML::Node root;
-    try {
+    try
+    {
         root = YAML::LoadFile(file);
-    } catch (const YAML::BadFile&) {
+    }
+    catch (const YAML::BadFile&)
+    {
         throw std::runtime_error(file + ": cannot open the config file");
-    } catch (const YAML::Exception& e) {
+    }
+    catch (const YAML::Exception& e)
+    {
         throw std::runtime_error(baseName(file) + ": YAML syntax error at line " +
                                  std::to_string(e.mark.line + 1) + ": " + e.msg);
     }
@@ -72,20 +88,30 @@ Block Block::load(const std::string& file)
     return Block(file, "", root);
 }
 
-const YAML::Node& Block::node() const { return *node_; }
+const YAML::Node& Block::node() const
+{
+    return *node_;
+}
 
-std::string Block::keyName(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+std::string Block::keyName(const std::string& key) const
+{
+    return path_.empty() ? key : path_ + "." + key;
+}
 
 void Block::fail(const std::string& key, const std::string& what) const
 {
     throw std::runtime_error(baseName(file_) + ": '" + keyName(key) + "' " + what);
 }
 
-bool Block::has(const std::string& key) const { return static_cast<bool>(node()[key]); }
+bool Block::has(const std::string& key) const
+{
+    return static_cast<bool>(node()[key]);
+}
 
 void Block::allowOnly(const std::vector<std::string>& known) const
 {
-    for (const auto& entry : node()) {
+    for (const auto& entry : node())
+    {
         const std::string key = entry.first.as<std::string>();
         if (std::find(known.begin(), known.end(), key) != known.end())
             continue;
@@ -94,7 +120,8 @@ void Block::allowOnly(const std::vector<std::string>& known) const
         const std::string hint = closestMatch(key, known);
         if (!hint.empty())
             msg += " (did you mean '" + hint + "'?)";
-        else {
+        else
+        {
             msg += " (known keys:";
             for (const auto& k : known)
                 msg += " " + k;
@@ -134,7 +161,8 @@ std::vector<Block> Block::blockList(const std::string& key) const
     if (!n.IsSequence())
         fail(key, "must be a list of mappings");
     std::vector<Block> out;
-    for (std::size_t i = 0; i < n.size(); ++i) {
+    for (std::size_t i = 0; i < n.size(); ++i)
+    {
         if (!n[i].IsMap())
             fail(key, "entry " + std::to_string(i) + " must be a mapping of keys");
         out.push_back(Block(file_, keyName(key) + "[" + std::to_string(i) + "]", n[i]));
@@ -145,36 +173,51 @@ std::vector<Block> Block::blockList(const std::string& key) const
 double Block::number(const std::string& key) const
 {
     YAML::Node n = child(key);
-    try {
+    try
+    {
         if (!n.IsScalar())
             throw YAML::Exception(YAML::Mark(), "");
         return n.as<double>();
-    } catch (const YAML::Exception&) {
+    }
+    catch (const YAML::Exception&)
+    {
         fail(key, "must be a number");
     }
 }
-double Block::number(const std::string& key, double fallback) const { return has(key) ? number(key) : fallback; }
+double Block::number(const std::string& key, double fallback) const
+{
+    return has(key) ? number(key) : fallback;
+}
 
 int Block::integer(const std::string& key) const
 {
     YAML::Node n = child(key);
-    try {
+    try
+    {
         if (!n.IsScalar())
             throw YAML::Exception(YAML::Mark(), "");
         return n.as<int>();
-    } catch (const YAML::Exception&) {
+    }
+    catch (const YAML::Exception&)
+    {
         fail(key, "must be an integer");
     }
 }
-int Block::integer(const std::string& key, int fallback) const { return has(key) ? integer(key) : fallback; }
+int Block::integer(const std::string& key, int fallback) const
+{
+    return has(key) ? integer(key) : fallback;
+}
 
 bool Block::flag(const std::string& key, bool fallback) const
 {
     if (!has(key))
         return fallback;
-    try {
+    try
+    {
         return node()[key].as<bool>();
-    } catch (const YAML::Exception&) {
+    }
+    catch (const YAML::Exception&)
+    {
         fail(key, "must be true or false");
     }
 }
@@ -194,7 +237,8 @@ std::string Block::text(const std::string& key, const std::string& fallback) con
 std::string Block::choice(const std::string& key, const std::vector<std::string>& choices) const
 {
     const std::string value = text(key);
-    if (std::find(choices.begin(), choices.end(), value) == choices.end()) {
+    if (std::find(choices.begin(), choices.end(), value) == choices.end())
+    {
         std::string list;
         for (const auto& c : choices)
             list += (list.empty() ? "" : " | ") + c;
@@ -214,10 +258,13 @@ std::vector<double> Block::numbers(const std::string& key) const
     if (!n.IsSequence())
         fail(key, "must be a list of numbers, e.g. [1.0, 2.0]");
     std::vector<double> out;
-    try {
+    try
+    {
         for (std::size_t i = 0; i < n.size(); ++i)
             out.push_back(n[i].as<double>());
-    } catch (const YAML::Exception&) {
+    }
+    catch (const YAML::Exception&)
+    {
         fail(key, "must be a list of numbers, e.g. [1.0, 2.0]");
     }
     return out;
@@ -237,13 +284,16 @@ std::vector<std::string> Block::texts(const std::string& key) const
     std::vector<std::string> out;
     if (n.IsScalar())
         out.push_back(n.as<std::string>());
-    else if (n.IsSequence()) {
-        for (std::size_t i = 0; i < n.size(); ++i) {
+    else if (n.IsSequence())
+    {
+        for (std::size_t i = 0; i < n.size(); ++i)
+        {
             if (!n[i].IsScalar())
                 fail(key, "must be a name or a list of names");
             out.push_back(n[i].as<std::string>());
         }
-    } else
+    }
+    else
         fail(key, "must be a name or a list of names");
     return out;
 }
@@ -254,8 +304,10 @@ std::vector<std::vector<double>> Block::table(const std::string& key) const
     if (!n.IsSequence())
         fail(key, "must be a list of rows, e.g. [[0, 0], [1, 1]]");
     std::vector<std::vector<double>> out;
-    try {
-        for (std::size_t i = 0; i < n.size(); ++i) {
+    try
+    {
+        for (std::size_t i = 0; i < n.size(); ++i)
+        {
             if (!n[i].IsSequence())
                 throw YAML::Exception(YAML::Mark(), "");
             std::vector<double> row;
@@ -263,7 +315,9 @@ std::vector<std::vector<double>> Block::table(const std::string& key) const
                 row.push_back(n[i][j].as<double>());
             out.push_back(row);
         }
-    } catch (const YAML::Exception&) {
+    }
+    catch (const YAML::Exception&)
+    {
         fail(key, "must be a list of rows of numbers, e.g. [[0, 0], [1, 1]]");
     }
     return out;

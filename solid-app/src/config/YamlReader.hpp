@@ -10,9 +10,13 @@
 #include <string>
 #include <vector>
 
-namespace YAML { class Node; }
+namespace YAML
+{
+class Node;
+}
 
-namespace fsi::config {
+namespace fsi::config
+{
 
 class Block
 {
@@ -25,7 +29,7 @@ public:
     ~Block();
 
     const std::string& file() const { return file_; }
-    const std::string& path() const { return path_; }   // e.g. "solid.material"
+    const std::string& path() const { return path_; } // e.g. "solid.material"
     // Full dotted name of a child key, for messages.
     std::string keyName(const std::string& key) const;
 
@@ -33,9 +37,9 @@ public:
     // Throws unless every key of this block is in `known` (with a did-you-mean hint).
     void allowOnly(const std::vector<std::string>& known) const;
 
-    Block block(const std::string& key) const;                      // required mapping
+    Block block(const std::string& key) const; // required mapping
     std::optional<Block> optionalBlock(const std::string& key) const;
-    std::vector<Block> blockList(const std::string& key) const;      // required sequence of mappings
+    std::vector<Block> blockList(const std::string& key) const; // required sequence of mappings
 
     double number(const std::string& key) const;
     double number(const std::string& key, double fallback) const;
@@ -50,7 +54,7 @@ public:
                        const std::string& fallback) const;
     std::vector<double> numbers(const std::string& key) const;
     std::array<double, 3> vector3(const std::string& key) const;
-    std::vector<std::string> texts(const std::string& key) const;   // scalar or sequence
+    std::vector<std::string> texts(const std::string& key) const;         // scalar or sequence
     std::vector<std::vector<double>> table(const std::string& key) const; // [[a, b], ...]
 
     // One-line error about `key` of this block.
@@ -59,7 +63,7 @@ public:
 private:
     Block(std::string file, std::string path, const YAML::Node& node);
     const YAML::Node& node() const;
-    YAML::Node child(const std::string& key) const;   // required
+    YAML::Node child(const std::string& key) const; // required
     std::string file_;
     std::string path_;
     std::unique_ptr<YAML::Node> node_;

@@ -5,21 +5,24 @@
 
 #include <limits>
 
-namespace fsi::fe {
+namespace fsi::fe
+{
 using material::Kinematics;
 using material::Matrix6;
 using material::Vector6;
 
-double appendCellQuadrature(mesh::CellType type, const Eigen::Matrix3Xd& X, std::vector<double>& out)
+double appendCellQuadrature(mesh::CellType type, const Eigen::Matrix3Xd& X,
+                            std::vector<double>& out)
 {
     const auto& ref = mesh::ReferenceElement::get(type);
     const int n = ref.numNodes();
     Eigen::VectorXd N;
     Eigen::MatrixXd dN;
     double minDet = std::numeric_limits<double>::max();
-    for (const auto& qp : quadrature(type)) {
+    for (const auto& qp : quadrature(type))
+    {
         ref.evaluate(qp.xi, N, dN);
-        const Eigen::Matrix3d J = X * dN;   // dX/dxi
+        const Eigen::Matrix3d J = X * dN; // dX/dxi
         const double det = J.determinant();
         minDet = std::min(minDet, det);
         const Eigen::MatrixXd dNdX = dN * J.inverse();
@@ -38,17 +41,20 @@ Eigen::Matrix3d deformationGradient(const CellQuadrature& cq, int q, const Eigen
 Vector6 strainFromF(const Eigen::Matrix3d& F, Kinematics kinematics)
 {
     Eigen::Matrix3d e;
-    if (kinematics == Kinematics::SmallStrain) {
+    if (kinematics == Kinematics::SmallStrain)
+    {
         const Eigen::Matrix3d H = F - Eigen::Matrix3d::Identity();
         e = 0.5 * (H + H.transpose());
-    } else
+    }
+    else
         e = 0.5 * (F.transpose() * F - Eigen::Matrix3d::Identity());
     Vector6 v;
     v << e(0, 0), e(1, 1), e(2, 2), 2 * e(0, 1), 2 * e(1, 2), 2 * e(0, 2);
     return v;
 }
 
-namespace {
+namespace
+{
 Eigen::Matrix3d tensorFromVoigt(const Vector6& s)
 {
     Eigen::Matrix3d t;
@@ -57,7 +63,8 @@ Eigen::Matrix3d tensorFromVoigt(const Vector6& s)
 }
 } // namespace
 
-Vector6 cauchyFromMaterialStress(const Vector6& stress, const Eigen::Matrix3d& F, Kinematics kinematics)
+Vector6 cauchyFromMaterialStress(const Vector6& stress, const Eigen::Matrix3d& F,
+                                 Kinematics kinematics)
 {
     if (kinematics == Kinematics::SmallStrain)
         return stress;
@@ -67,9 +74,10 @@ Vector6 cauchyFromMaterialStress(const Vector6& stress, const Eigen::Matrix3d& F
     return v;
 }
 
-void cellResponse(const CellQuadrature& cq, const Eigen::Matrix3Xd& u, const material::Material& law,
-                  Kinematics kinematics, const material::TimeStep& step, const double* history,
-                  Eigen::VectorXd& fint, Eigen::MatrixXd* K)
+void cellResponse(const CellQuadrature& cq, const Eigen::Matrix3Xd& u,
+                  const material::Material& law, Kinematics kinematics,
+                  const material::TimeStep& step, const double* history, Eigen::VectorXd& fint,
+                  Eigen::MatrixXd* K)
 {
     const int n = cq.numNodes;
     const std::size_t hs = law.historySize();
@@ -79,15 +87,18 @@ void cellResponse(const CellQuadrature& cq, const Eigen::Matrix3Xd& u, const mat
     Eigen::Matrix<double, 6, Eigen::Dynamic> B(6, 3 * n);
     Vector6 stress;
     Matrix6 D;
-    for (int q = 0; q < cq.numPoints; ++q) {
+    for (int q = 0; q < cq.numPoints; ++q)
+    {
         const auto g = cq.dNdX(q);
-        const Eigen::Matrix3d F = kinematics == Kinematics::SmallStrain ? Eigen::Matrix3d::Identity()
-                                                                        : deformationGradient(cq, q, u);
-        const Vector6 strain = strainFromF(kinematics == Kinematics::SmallStrain ? deformationGradient(cq, q, u) : F,
-                                           kinematics);
+        const Eigen::Matrix3d F = kinematics == Kinematics::SmallStrain
+                                      ? Eigen::Matrix3d::Identity()
+                                      : deformationGradient(cq, q, u);
+        const Vector6 strain = strainFromF(
+            kinematics == Kinematics::SmallStrain ? deformationGradient(cq, q, u) : F, kinematics);
         law.evaluate(strain, step, hs ? history + q * hs : nullptr, stress, D);
         for (int a = 0; a < n; ++a)
-            for (int i = 0; i < 3; ++i) {
+            for (int i = 0; i < 3; ++i)
+            {
                 const int col = 3 * a + i;
                 B(0, col) = F(i, 0) * g(a, 0);
                 B(1, col) = F(i, 1) * g(a, 1);
@@ -98,11 +109,13 @@ void cellResponse(const CellQuadrature& cq, const Eigen::Matrix3Xd& u, const mat
             }
         const double w = cq.weight(q);
         fint.noalias() += w * (B.transpose() * stress);
-        if (K) {
+        if (K)
+        {
             K->noalias() += w * (B.transpose() * (D * B));
-            if (kinematics == Kinematics::TotalLagrangian) {
+            if (kinematics == Kinematics::TotalLagrangian)
+            {
                 const Eigen::Matrix3d S = tensorFromVoigt(stress);
-                const Eigen::MatrixXd G = g * S * g.transpose();   // n x n
+                const Eigen::MatrixXd G = g * S * g.transpose(); // n x n
                 for (int a = 0; a < n; ++a)
                     for (int b = 0; b < n; ++b)
                         for (int i = 0; i < 3; ++i)

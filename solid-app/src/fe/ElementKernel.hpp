@@ -10,7 +10,8 @@
 #include <Eigen/Dense>
 #include <vector>
 
-namespace fsi::fe {
+namespace fsi::fe
+{
 
 // Flat per-cell quadrature data: per point [w*detJ, N_a (n), dN_a/dX_k (n x 3, column-major)].
 struct CellQuadrature
@@ -29,21 +30,24 @@ struct CellQuadrature
 
 // Appends the quadrature data of a cell with reference node coordinates X (3 x n) to `out`.
 // Returns the smallest detJ over the points (<= 0: inverted cell; caller decides).
-double appendCellQuadrature(mesh::CellType type, const Eigen::Matrix3Xd& X, std::vector<double>& out);
+double appendCellQuadrature(mesh::CellType type, const Eigen::Matrix3Xd& X,
+                            std::vector<double>& out);
 
 // Deformation gradient (F = I + u dNdX) at a point; u is 3 x n cell displacements [m].
 Eigen::Matrix3d deformationGradient(const CellQuadrature& cq, int q, const Eigen::Matrix3Xd& u);
 // Strain measure of the kinematics (engineering shear) from F.
 material::Vector6 strainFromF(const Eigen::Matrix3d& F, material::Kinematics kinematics);
 // Cauchy stress (Voigt, tensor shear) from the material stress of the kinematics.
-material::Vector6 cauchyFromMaterialStress(const material::Vector6& stress, const Eigen::Matrix3d& F,
+material::Vector6 cauchyFromMaterialStress(const material::Vector6& stress,
+                                           const Eigen::Matrix3d& F,
                                            material::Kinematics kinematics);
 
 // Internal force fint (3n, node-major: 3a + i) [N] and, if K != nullptr, tangent (3n x 3n)
 // of one cell. history: numPoints * historySize doubles (committed), may be nullptr if 0.
 // Throws material::InadmissibleDeformation for det F <= 0.
-void cellResponse(const CellQuadrature& cq, const Eigen::Matrix3Xd& u, const material::Material& law,
-                  material::Kinematics kinematics, const material::TimeStep& step,
-                  const double* history, Eigen::VectorXd& fint, Eigen::MatrixXd* K);
+void cellResponse(const CellQuadrature& cq, const Eigen::Matrix3Xd& u,
+                  const material::Material& law, material::Kinematics kinematics,
+                  const material::TimeStep& step, const double* history, Eigen::VectorXd& fint,
+                  Eigen::MatrixXd* K);
 
 } // namespace fsi::fe

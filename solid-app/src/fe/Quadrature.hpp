@@ -12,7 +12,8 @@
 #include <Eigen/Dense>
 #include <vector>
 
-namespace fsi::fe {
+namespace fsi::fe
+{
 
 struct QuadraturePoint
 {

@@ -14,7 +14,8 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace fsi::fe {
+namespace fsi::fe
+{
 using material::Kinematics;
 using material::Vector6;
 
@@ -23,7 +24,8 @@ struct StructuralSolver::Pattern
     linalg::CsrPattern csr;
 };
 
-namespace {
+namespace
+{
 
 Eigen::Matrix3Xd cellCoordinates(const Eigen::Matrix3Xd& nodes, const int* conn, int n)
 {
@@ -38,13 +40,15 @@ void faceWeights(const mesh::Mesh& mesh, const mesh::SurfaceGroup& group, std::v
 {
     Eigen::VectorXd N;
     Eigen::MatrixXd dN;
-    for (int f = 0; f < group.faces.size(); ++f) {
+    for (int f = 0; f < group.faces.size(); ++f)
+    {
         const auto type = group.faces.types[f];
         const auto& ref = mesh::ReferenceElement::get(type);
         const int n = ref.numNodes();
         const int* conn = group.faces.nodes(f);
         const Eigen::Matrix3Xd X = cellCoordinates(mesh.nodes, conn, n);
-        for (const auto& qp : quadrature(type)) {
+        for (const auto& qp : quadrature(type))
+        {
             ref.evaluate(qp.xi, N, dN);
             const Eigen::Matrix<double, 3, 2> T = X * dN;
             const double dA = T.col(0).cross(T.col(1)).norm() * qp.weight;
@@ -56,8 +60,8 @@ void faceWeights(const mesh::Mesh& mesh, const mesh::SurfaceGroup& group, std::v
 
 } // namespace
 
-StructuralSolver::StructuralSolver(MPI_Comm comm, const mesh::Mesh& mesh, const material::Material& law,
-                                   ProblemDefinition problem)
+StructuralSolver::StructuralSolver(MPI_Comm comm, const mesh::Mesh& mesh,
+                                   const material::Material& law, ProblemDefinition problem)
     : comm_(comm), mesh_(mesh), law_(law), problem_(std::move(problem))
 {
     MPI_Comm_rank(comm_, &rank_);
@@ -72,17 +76,21 @@ StructuralSolver::StructuralSolver(MPI_Comm comm, const mesh::Mesh& mesh, const 
             for (int c = 0; c < 3; ++c)
                 fixed[3 * node + c] = 1;
     std::vector<int> fieldOf(mesh_.numNodes(), -1);
-    for (std::size_t k = 0; k < problem_.displacements.size(); ++k) {
+    for (std::size_t k = 0; k < problem_.displacements.size(); ++k)
+    {
         const auto& d = problem_.displacements[k];
-        for (int node : mesh_.surface(d.surface).nodes) {
-            if (d.field) {
+        for (int node : mesh_.surface(d.surface).nodes)
+        {
+            if (d.field)
+            {
                 fieldOf[node] = static_cast<int>(k);
                 for (int c = 0; c < 3; ++c)
                     fixed[3 * node + c] = 1;
                 continue;
             }
             for (int c = 0; c < 3; ++c)
-                if (d.value[c]) {
+                if (d.value[c])
+                {
                     if (!fixed[3 * node + c] || value[3 * node + c] == 0.0)
                         value[3 * node + c] = *d.value[c];
                     fixed[3 * node + c] = 1;
@@ -93,11 +101,14 @@ StructuralSolver::StructuralSolver(MPI_Comm comm, const mesh::Mesh& mesh, const 
         if (fieldOf[node] >= 0)
             fieldNodes_.emplace_back(node, fieldOf[node]);
     equation_.assign(nDofs, -1);
-    for (int dof = 0; dof < nDofs; ++dof) {
-        if (fixed[dof]) {
+    for (int dof = 0; dof < nDofs; ++dof)
+    {
+        if (fixed[dof])
+        {
             prescribedDofs_.push_back(dof);
             prescribedValues_.push_back(value[dof]);
-        } else
+        }
+        else
             equation_[dof] = numFree_++;
     }
     if (numFree_ == 0)
@@ -112,7 +123,7 @@ StructuralSolver::StructuralSolver(MPI_Comm comm, const mesh::Mesh& mesh, const 
     // --- element partition (METIS) and this rank's cells
     const auto& cells = mesh_.cells;
     std::vector<int> part = size_ > 1 ? linalg::partitionElements(cells.size(), cells.offsets,
-                                                                     cells.connectivity, size_)
+                                                                  cells.connectivity, size_)
                                       : std::vector<int>(cells.size(), 0);
     for (int c = 0; c < cells.size(); ++c)
         if (part[c] == rank_)
@@ -121,11 +132,13 @@ StructuralSolver::StructuralSolver(MPI_Comm comm, const mesh::Mesh& mesh, const 
     // --- quadrature data, history, dof lists of own cells
     std::vector<int> dofOffsets{0}, dofs;
     int points = 0;
-    for (int c : ownCells_) {
+    for (int c : ownCells_)
+    {
         const int n = cells.numNodes(c);
         quadOffset_.push_back(quad_.size());
         pointOffset_.push_back(points);
-        const double det = appendCellQuadrature(cells.types[c], cellCoordinates(mesh_.nodes, cells.nodes(c), n), quad_);
+        const double det = appendCellQuadrature(
+            cells.types[c], cellCoordinates(mesh_.nodes, cells.nodes(c), n), quad_);
         if (!(det > 0.0))
             throw std::runtime_error(mesh_.source + ": inverted cell " + std::to_string(c) +
                                      " (negative Jacobian at an integration point)");
@@ -156,8 +169,14 @@ StructuralSolver::StructuralSolver(MPI_Comm comm, const mesh::Mesh& mesh, const 
 
 StructuralSolver::~StructuralSolver() = default;
 
-int StructuralSolver::factorizationCount() const { return linear_->factorizationCount(); }
-int StructuralSolver::analysisCount() const { return linear_->analysisCount(); }
+int StructuralSolver::factorizationCount() const
+{
+    return linear_->factorizationCount();
+}
+int StructuralSolver::analysisCount() const
+{
+    return linear_->analysisCount();
+}
 
 double StructuralSolver::freeNorm(const std::vector<double>& v) const
 {
@@ -172,7 +191,8 @@ void StructuralSolver::applyPrescribed(double factor, std::vector<double>& u) co
 {
     for (std::size_t k = 0; k < prescribedDofs_.size(); ++k)
         u[prescribedDofs_[k]] = factor * prescribedValues_[k];
-    for (const auto& [node, k] : fieldNodes_) {
+    for (const auto& [node, k] : fieldNodes_)
+    {
         const Eigen::Vector3d v = problem_.displacements[k].field(mesh_.nodes.col(node), factor);
         for (int c = 0; c < 3; ++c)
             u[3 * node + c] = v[c];
@@ -185,15 +205,18 @@ void StructuralSolver::buildExternalLoads(double factor, const InterfaceLoads& i
     f.assign(numDofs(), 0.0);
     const auto& cells = mesh_.cells;
     // gravity over all cells (replicated: cheap against assembly)
-    if (problem_.density > 0.0 && problem_.gravity.squaredNorm() > 0.0) {
+    if (problem_.density > 0.0 && problem_.gravity.squaredNorm() > 0.0)
+    {
         std::vector<double> w(mesh_.numNodes(), 0.0);
         Eigen::VectorXd N;
         Eigen::MatrixXd dN;
-        for (int c = 0; c < cells.size(); ++c) {
+        for (int c = 0; c < cells.size(); ++c)
+        {
             const auto& ref = mesh::ReferenceElement::get(cells.types[c]);
             const int n = ref.numNodes();
             const Eigen::Matrix3Xd X = cellCoordinates(mesh_.nodes, cells.nodes(c), n);
-            for (const auto& qp : quadrature(cells.types[c])) {
+            for (const auto& qp : quadrature(cells.types[c]))
+            {
                 ref.evaluate(qp.xi, N, dN);
                 const double dV = (X * dN).determinant() * qp.weight;
                 for (int a = 0; a < n; ++a)
@@ -204,7 +227,8 @@ void StructuralSolver::buildExternalLoads(double factor, const InterfaceLoads& i
             for (int i = 0; i < 3; ++i)
                 f[3 * node + i] += factor * problem_.density * problem_.gravity[i] * w[node];
     }
-    auto spread = [&](const std::string& surface, const Eigen::Vector3d& traction) {
+    auto spread = [&](const std::string& surface, const Eigen::Vector3d& traction)
+    {
         std::vector<double> w(mesh_.numNodes(), 0.0);
         faceWeights(mesh_, mesh_.surface(surface), w);
         for (int node : mesh_.surface(surface).nodes)
@@ -214,16 +238,19 @@ void StructuralSolver::buildExternalLoads(double factor, const InterfaceLoads& i
     };
     for (const auto& t : problem_.tractions)
         spread(t.surface, t.traction);
-    for (const auto& force : problem_.forces) {
+    for (const auto& force : problem_.forces)
+    {
         std::vector<double> w(mesh_.numNodes(), 0.0);
         faceWeights(mesh_, mesh_.surface(force.surface), w);
         const double area = std::accumulate(w.begin(), w.end(), 0.0);
         spread(force.surface, force.total / area);
     }
-    if (!interface.forces.empty()) {
+    if (!interface.forces.empty())
+    {
         if (interface.forces.size() != 3 * wettedNodes_.size())
             throw std::runtime_error("StructuralSolver::solve: interface forces have " +
-                                     std::to_string(interface.forces.size()) + " values, expected 3 x " +
+                                     std::to_string(interface.forces.size()) +
+                                     " values, expected 3 x " +
                                      std::to_string(wettedNodes_.size()) + " wetted nodes");
         for (std::size_t k = 0; k < wettedNodes_.size(); ++k)
             for (int i = 0; i < 3; ++i)
@@ -231,7 +258,8 @@ void StructuralSolver::buildExternalLoads(double factor, const InterfaceLoads& i
     }
 }
 
-bool StructuralSolver::assemble(const std::vector<double>& u, bool withMatrix, std::vector<double>& fint)
+bool StructuralSolver::assemble(const std::vector<double>& u, bool withMatrix,
+                                std::vector<double>& fint)
 {
     const double start = MPI_Wtime();
     struct Timer
@@ -249,7 +277,8 @@ bool StructuralSolver::assemble(const std::vector<double>& u, bool withMatrix, s
     Eigen::MatrixXd Ke;
     int ok = 1;
     std::vector<int> dofs;
-    for (std::size_t k = 0; k < ownCells_.size() && ok; ++k) {
+    for (std::size_t k = 0; k < ownCells_.size() && ok; ++k)
+    {
         const int c = ownCells_[k];
         const int n = cells.numNodes(c);
         const int* conn = cells.nodes(c);
@@ -258,26 +287,32 @@ bool StructuralSolver::assemble(const std::vector<double>& u, bool withMatrix, s
         for (int a = 0; a < n; ++a)
             for (int i = 0; i < 3; ++i)
                 ue(i, a) = u[3 * conn[a] + i];
-        try {
+        try
+        {
             cellResponse(cq, ue, law_, problem_.kinematics, step_,
                          hs ? committedHistory_.data() + pointOffset_[k] * hs : nullptr, fe,
                          withMatrix ? &Ke : nullptr);
-        } catch (const material::InadmissibleDeformation&) {
+        }
+        catch (const material::InadmissibleDeformation&)
+        {
             ok = 0;
             break;
         }
-        if (!fe.allFinite()) {
+        if (!fe.allFinite())
+        {
             ok = 0;
             break;
         }
         dofs.resize(3 * n);
         for (int a = 0; a < n; ++a)
-            for (int i = 0; i < 3; ++i) {
+            for (int i = 0; i < 3; ++i)
+            {
                 dofs[3 * a + i] = equation_[3 * conn[a] + i];
                 fint[3 * conn[a] + i] += fe[3 * a + i];
             }
         if (withMatrix)
-            for (int r = 0; r < 3 * n; ++r) {
+            for (int r = 0; r < 3 * n; ++r)
+            {
                 if (dofs[r] < 0)
                     continue;
                 for (int s = 0; s < 3 * n; ++s)
@@ -289,23 +324,26 @@ bool StructuralSolver::assemble(const std::vector<double>& u, bool withMatrix, s
     if (!ok)
         return false;
     if (size_ > 1)
-        MPI_Allreduce(MPI_IN_PLACE, fint.data(), static_cast<int>(fint.size()), MPI_DOUBLE, MPI_SUM, comm_);
+        MPI_Allreduce(MPI_IN_PLACE, fint.data(), static_cast<int>(fint.size()), MPI_DOUBLE, MPI_SUM,
+                      comm_);
     if (withMatrix)
         linear_->setValues(values_);
     return true;
 }
 
-bool StructuralSolver::newton(const std::vector<double>& fext, double factor, std::vector<double>& u,
-                              SolveReport& report)
+bool StructuralSolver::newton(const std::vector<double>& fext, double factor,
+                              std::vector<double>& u, SolveReport& report)
 {
     const auto& nw = problem_.newton;
     applyPrescribed(factor, u);
     std::vector<double> fint, R(numDofs()), du(numFree_), trial;
-    auto residual = [&](const std::vector<double>& state, bool matrix, double& norm, double& ref) {
+    auto residual = [&](const std::vector<double>& state, bool matrix, double& norm, double& ref)
+    {
         if (!assemble(state, matrix, fint))
             return false;
         double fe2 = 0.0, fi2 = 0.0;
-        for (int dof = 0; dof < numDofs(); ++dof) {
+        for (int dof = 0; dof < numDofs(); ++dof)
+        {
             R[dof] = fext[dof] - fint[dof];
             fe2 += fext[dof] * fext[dof];
             fi2 += fint[dof] * fint[dof];
@@ -318,18 +356,21 @@ bool StructuralSolver::newton(const std::vector<double>& fext, double factor, st
     };
     report.residuals.clear();
     double norm = 0.0, ref = 0.0;
-    if (!residual(u, true, norm, ref)) {
+    if (!residual(u, true, norm, ref))
+    {
         report.message = "inadmissible deformation (det F <= 0) at the start state";
         return false;
     }
     report.initialResidual = norm;
     report.residuals.push_back(norm);
-    for (int it = 0;; ++it) {
+    for (int it = 0;; ++it)
+    {
         report.referenceForce = ref;
         report.finalResidual = norm;
         if (norm <= nw.residualTolerance * ref + nw.absoluteTolerance)
             return true;
-        if (it >= nw.maxIterations) {
+        if (it >= nw.maxIterations)
+        {
             report.message = "Newton stalled: " + std::to_string(it) + " iterations, residual " +
                              std::to_string(norm) + " N";
             return false;
@@ -346,7 +387,8 @@ bool StructuralSolver::newton(const std::vector<double>& fext, double factor, st
         // line search (energy form, Crisfield): find alpha with s(alpha) = du . R(u + alpha du)
         // small against s(0) = du . R(u) > 0; the residual NORM may grow on a good Newton step
         // (e.g. membrane forces of a bending predictor), so it is not the acceptance test.
-        auto directional = [&]() {
+        auto directional = [&]()
+        {
             double s = 0.0;
             for (int dof = 0; dof < numDofs(); ++dof)
                 if (equation_[dof] >= 0)
@@ -355,7 +397,8 @@ bool StructuralSolver::newton(const std::vector<double>& fext, double factor, st
         };
         const double s0 = directional();
         double alpha = 1.0, trialNorm = 0.0, trialRef = ref;
-        auto tryStep = [&](double a) {
+        auto tryStep = [&](double a)
+        {
             trial = u;
             for (int dof = 0; dof < numDofs(); ++dof)
                 if (equation_[dof] >= 0)
@@ -364,15 +407,19 @@ bool StructuralSolver::newton(const std::vector<double>& fext, double factor, st
             return residual(trial, false, trialNorm, trialRef);
         };
         bool admissible = tryStep(alpha);
-        for (int cut = 0; !admissible && cut < 8; ++cut)   // inadmissible (det F <= 0, NaN): halve
+        for (int cut = 0; !admissible && cut < 8; ++cut) // inadmissible (det F <= 0, NaN): halve
             admissible = tryStep(alpha *= 0.5);
-        if (!admissible) {
-            report.message = "Newton stalled: every step along the Newton direction is inadmissible";
+        if (!admissible)
+        {
+            report.message =
+                "Newton stalled: every step along the Newton direction is inadmissible";
             return false;
         }
-        if (nw.lineSearch && s0 > 0.0) {
+        if (nw.lineSearch && s0 > 0.0)
+        {
             double sAlpha = directional();
-            for (int k = 0; k < 5 && std::abs(sAlpha) > 0.5 * s0; ++k) {
+            for (int k = 0; k < 5 && std::abs(sAlpha) > 0.5 * s0; ++k)
+            {
                 // secant for the zero of s(alpha) through (0, s0) and (alpha, s(alpha))
                 double next = s0 - sAlpha > 0.0 ? alpha * s0 / (s0 - sAlpha) : 1.0;
                 next = std::clamp(next, 0.1 * alpha, 1.0);
@@ -383,27 +430,31 @@ bool StructuralSolver::newton(const std::vector<double>& fext, double factor, st
                     break;
                 sAlpha = directional();
             }
-            if (!std::isfinite(trialNorm) && !tryStep(alpha = 0.1)) {
+            if (!std::isfinite(trialNorm) && !tryStep(alpha = 0.1))
+            {
                 report.message = "Newton stalled: no admissible line-search step";
                 return false;
             }
         }
         // divergence guard: a residual exploding by orders of magnitude is not progress
-        if (trialNorm > 1e8 * std::max(norm, nw.absoluteTolerance) && trialNorm > ref) {
+        if (trialNorm > 1e8 * std::max(norm, nw.absoluteTolerance) && trialNorm > ref)
+        {
             report.message = "Newton diverged: residual " + std::to_string(trialNorm) + " N";
             return false;
         }
         u.swap(trial);
         ++report.newtonIterations;
         if (problem_.printIterations && rank_ == 0)
-            std::printf("    newton %2d  |R| = %.3e N  (ref %.3e N)%s\n", it + 1, trialNorm, trialRef,
+            std::printf("    newton %2d  |R| = %.3e N  (ref %.3e N)%s\n", it + 1, trialNorm,
+                        trialRef,
                         alpha < 1.0 ? ("  line search " + std::to_string(alpha)).c_str() : "");
         norm = trialNorm;
         ref = trialRef;
         report.residuals.push_back(norm);
         if (norm <= nw.residualTolerance * ref + nw.absoluteTolerance || it + 1 >= nw.maxIterations)
-            continue;   // converged (or out of iterations): no new matrix needed
-        if (!residual(u, true, norm, ref)) {
+            continue; // converged (or out of iterations): no new matrix needed
+        if (!residual(u, true, norm, ref))
+        {
             report.message = "inadmissible deformation after a Newton step";
             return false;
         }
@@ -419,8 +470,8 @@ SolveReport StructuralSolver::solve(const material::TimeStep& step, const Interf
     return report;
 }
 
-SolveReport StructuralSolver::solveLevel(const material::TimeStep& step, const InterfaceLoads& interface,
-                                         double loadFactor)
+SolveReport StructuralSolver::solveLevel(const material::TimeStep& step,
+                                         const InterfaceLoads& interface, double loadFactor)
 {
     if (!(step.dt >= 0.0))
         throw std::runtime_error("StructuralSolver::solve: dt must be >= 0");
@@ -433,7 +484,8 @@ SolveReport StructuralSolver::solveLevel(const material::TimeStep& step, const I
     std::vector<double> u = lastConverged_ ? u_ : uCommitted_;
     fextLast_ = fTarget;
     factorLast_ = loadFactor;
-    if (newton(fTarget, loadFactor, u, report)) {
+    if (newton(fTarget, loadFactor, u, report))
+    {
         u_ = u;
         lastConverged_ = true;
         report.converged = true;
@@ -442,14 +494,16 @@ SolveReport StructuralSolver::solveLevel(const material::TimeStep& step, const I
     // sub-stepping from the committed state: loads ramped from the committed ones
     std::string firstFailure = report.message;
     int iterations = report.newtonIterations;
-    for (int cuts = 1; cuts <= problem_.newton.maxLoadCuts; ++cuts) {
+    for (int cuts = 1; cuts <= problem_.newton.maxLoadCuts; ++cuts)
+    {
         const int steps = 1 << cuts;
         if (problem_.printIterations && rank_ == 0)
             std::printf("    %s -> retrying in %d load sub-steps\n", report.message.c_str(), steps);
         u = uCommitted_;
         bool ok = true;
         std::vector<double> f(numDofs());
-        for (int s = 1; s <= steps && ok; ++s) {
+        for (int s = 1; s <= steps && ok; ++s)
+        {
             const double lambda = static_cast<double>(s) / steps;
             for (int dof = 0; dof < numDofs(); ++dof)
                 f[dof] = fextCommitted_[dof] + lambda * (fTarget[dof] - fextCommitted_[dof]);
@@ -461,7 +515,8 @@ SolveReport StructuralSolver::solveLevel(const material::TimeStep& step, const I
             report.referenceForce = sub.referenceForce;
             report.message = sub.message;
         }
-        if (ok) {
+        if (ok)
+        {
             u_ = u;
             lastConverged_ = true;
             report.converged = true;
@@ -485,19 +540,24 @@ void StructuralSolver::acceptLevel()
     if (!lastConverged_)
         throw std::runtime_error("StructuralSolver::acceptLevel: the last solve did not converge");
     const std::size_t hs = law_.historySize();
-    if (hs) {
+    if (hs)
+    {
         std::vector<double> next(committedHistory_.size());
         const auto& cells = mesh_.cells;
-        for (std::size_t k = 0; k < ownCells_.size(); ++k) {
+        for (std::size_t k = 0; k < ownCells_.size(); ++k)
+        {
             const int c = ownCells_[k];
             const int n = cells.numNodes(c);
-            CellQuadrature cq{n, pointOffset_[k + 1] - pointOffset_[k], quad_.data() + quadOffset_[k]};
+            CellQuadrature cq{n, pointOffset_[k + 1] - pointOffset_[k],
+                              quad_.data() + quadOffset_[k]};
             Eigen::Matrix3Xd ue(3, n);
             for (int a = 0; a < n; ++a)
                 for (int i = 0; i < 3; ++i)
                     ue(i, a) = u_[3 * cells.nodes(c)[a] + i];
-            for (int q = 0; q < cq.numPoints; ++q) {
-                const Vector6 strain = strainFromF(deformationGradient(cq, q, ue), problem_.kinematics);
+            for (int q = 0; q < cq.numPoints; ++q)
+            {
+                const Vector6 strain =
+                    strainFromF(deformationGradient(cq, q, ue), problem_.kinematics);
                 const std::size_t p = static_cast<std::size_t>(pointOffset_[k] + q) * hs;
                 law_.updateHistory(strain, step_, committedHistory_.data() + p, next.data() + p);
             }
@@ -533,14 +593,16 @@ std::vector<double> StructuralSolver::wettedNodeDisplacements() const
     return d;
 }
 
-void StructuralSolver::cauchyStress(std::vector<Vector6>& nodal, std::vector<Vector6>& cellStress) const
+void StructuralSolver::cauchyStress(std::vector<Vector6>& nodal,
+                                    std::vector<Vector6>& cellStress) const
 {
     const auto& cells = mesh_.cells;
     const std::size_t hs = law_.historySize();
     std::vector<double> nodeSum(7 * mesh_.numNodes(), 0.0), cellSum(6 * cells.size(), 0.0);
     Vector6 stress;
     material::Matrix6 D;
-    for (std::size_t k = 0; k < ownCells_.size(); ++k) {
+    for (std::size_t k = 0; k < ownCells_.size(); ++k)
+    {
         const int c = ownCells_[k];
         const int n = cells.numNodes(c);
         CellQuadrature cq{n, pointOffset_[k + 1] - pointOffset_[k], quad_.data() + quadOffset_[k]};
@@ -550,12 +612,17 @@ void StructuralSolver::cauchyStress(std::vector<Vector6>& nodal, std::vector<Vec
                 ue(i, a) = u_[3 * cells.nodes(c)[a] + i];
         Vector6 mean = Vector6::Zero();
         double volume = 0.0;
-        for (int q = 0; q < cq.numPoints; ++q) {
+        for (int q = 0; q < cq.numPoints; ++q)
+        {
             const Eigen::Matrix3d F = deformationGradient(cq, q, ue);
-            try {
+            try
+            {
                 law_.evaluate(strainFromF(F, problem_.kinematics), step_,
-                              hs ? committedHistory_.data() + (pointOffset_[k] + q) * hs : nullptr, stress, D);
-            } catch (const material::InadmissibleDeformation&) {
+                              hs ? committedHistory_.data() + (pointOffset_[k] + q) * hs : nullptr,
+                              stress, D);
+            }
+            catch (const material::InadmissibleDeformation&)
+            {
                 stress.setConstant(std::nan(""));
             }
             mean += cq.weight(q) * cauchyFromMaterialStress(stress, F, problem_.kinematics);
@@ -563,21 +630,26 @@ void StructuralSolver::cauchyStress(std::vector<Vector6>& nodal, std::vector<Vec
         }
         for (int i = 0; i < 6; ++i)
             cellSum[6 * c + i] = mean[i] / volume;
-        for (int a = 0; a < n; ++a) {
+        for (int a = 0; a < n; ++a)
+        {
             for (int i = 0; i < 6; ++i)
                 nodeSum[7 * cells.nodes(c)[a] + i] += mean[i];
             nodeSum[7 * cells.nodes(c)[a] + 6] += volume;
         }
     }
-    if (size_ > 1) {
-        MPI_Allreduce(MPI_IN_PLACE, nodeSum.data(), static_cast<int>(nodeSum.size()), MPI_DOUBLE, MPI_SUM, comm_);
-        MPI_Allreduce(MPI_IN_PLACE, cellSum.data(), static_cast<int>(cellSum.size()), MPI_DOUBLE, MPI_SUM, comm_);
+    if (size_ > 1)
+    {
+        MPI_Allreduce(MPI_IN_PLACE, nodeSum.data(), static_cast<int>(nodeSum.size()), MPI_DOUBLE,
+                      MPI_SUM, comm_);
+        MPI_Allreduce(MPI_IN_PLACE, cellSum.data(), static_cast<int>(cellSum.size()), MPI_DOUBLE,
+                      MPI_SUM, comm_);
     }
     nodal.assign(mesh_.numNodes(), Vector6::Zero());
     cellStress.assign(cells.size(), Vector6::Zero());
     for (int node = 0; node < mesh_.numNodes(); ++node)
         for (int i = 0; i < 6; ++i)
-            nodal[node][i] = nodeSum[7 * node + 6] > 0 ? nodeSum[7 * node + i] / nodeSum[7 * node + 6] : 0.0;
+            nodal[node][i] =
+                nodeSum[7 * node + 6] > 0 ? nodeSum[7 * node + i] / nodeSum[7 * node + 6] : 0.0;
     for (int c = 0; c < cells.size(); ++c)
         for (int i = 0; i < 6; ++i)
             cellStress[c][i] = cellSum[6 * c + i];

@@ -33,21 +33,22 @@
 #include <string>
 #include <vector>
 
-namespace fsi::fe {
+namespace fsi::fe
+{
 
 struct NewtonSettings
 {
     int maxIterations = 25;
-    double residualTolerance = 1e-8;   // ||R_free|| <= rtol * max(||f_ext||, ||f_int||) + atol
-    double absoluteTolerance = 1e-10;  // [N]
-    bool lineSearch = true;            // backtracking on ||R|| (halving, up to 1/16)
-    int maxLoadCuts = 6;               // failed level: retry in 2, 4, ... 2^k load sub-steps
+    double residualTolerance = 1e-8;  // ||R_free|| <= rtol * max(||f_ext||, ||f_int||) + atol
+    double absoluteTolerance = 1e-10; // [N]
+    bool lineSearch = true;           // backtracking on ||R|| (halving, up to 1/16)
+    int maxLoadCuts = 6;              // failed level: retry in 2, 4, ... 2^k load sub-steps
 };
 
 struct PrescribedDisplacement
 {
     std::string surface;
-    std::array<std::optional<double>, 3> value;   // [m]; unset components are free
+    std::array<std::optional<double>, 3> value; // [m]; unset components are free
     // Optional field u(X, loadFactor) [m] of the reference position: if set it prescribes all
     // three components at each node of the surface (value is then ignored; the field gets the
     // load factor itself, e.g. a rotation angle, and is not scaled).
@@ -57,29 +58,29 @@ struct PrescribedDisplacement
 struct SurfaceTraction
 {
     std::string surface;
-    Eigen::Vector3d traction = Eigen::Vector3d::Zero();   // [Pa] per reference area, dead load
+    Eigen::Vector3d traction = Eigen::Vector3d::Zero(); // [Pa] per reference area, dead load
 };
 
 struct SurfaceForce
 {
     std::string surface;
-    Eigen::Vector3d total = Eigen::Vector3d::Zero();      // [N], spread as a uniform traction
+    Eigen::Vector3d total = Eigen::Vector3d::Zero(); // [N], spread as a uniform traction
 };
 
 // What is fixed and loaded; every surface name must be a group of the mesh.
 struct ProblemDefinition
 {
     material::Kinematics kinematics = material::Kinematics::SmallStrain;
-    double density = 0.0;                                   // [kg/m^3]
-    Eigen::Vector3d gravity = Eigen::Vector3d::Zero();      // [m/s^2]
-    std::vector<std::string> clamped;                       // all dofs fixed
-    std::string wetted;                                     // interface surface ("" = none)
+    double density = 0.0;                              // [kg/m^3]
+    Eigen::Vector3d gravity = Eigen::Vector3d::Zero(); // [m/s^2]
+    std::vector<std::string> clamped;                  // all dofs fixed
+    std::string wetted;                                // interface surface ("" = none)
     std::vector<PrescribedDisplacement> displacements;
     std::vector<SurfaceTraction> tractions;
     std::vector<SurfaceForce> forces;
     NewtonSettings newton;
     int linearSolverVerbosity = 0;
-    bool printIterations = false;                           // rank 0 prints Newton progress
+    bool printIterations = false; // rank 0 prints Newton progress
 };
 
 // Forces from the coupling: 3 per wetted node [N] in wettedNodeCoordinates() order
@@ -92,15 +93,15 @@ struct InterfaceLoads
 struct SolveReport
 {
     bool converged = false;
-    int newtonIterations = 0;          // total over sub-steps
-    int loadCuts = 0;                  // 0: one step; k: 2^k sub-steps were needed
-    double initialResidual = 0.0;      // [N], free dofs
-    double finalResidual = 0.0;        // [N]
-    double referenceForce = 0.0;       // [N], the rtol reference
-    std::vector<double> residuals;     // per Newton iteration of the successful attempt
-    std::string message;               // why it failed / how it converged
-    double assemblySeconds = 0.0;      // wall time in element loops (residual + tangent)
-    double linearSolveSeconds = 0.0;   // wall time in MUMPS (analysis, factorization, solve)
+    int newtonIterations = 0;        // total over sub-steps
+    int loadCuts = 0;                // 0: one step; k: 2^k sub-steps were needed
+    double initialResidual = 0.0;    // [N], free dofs
+    double finalResidual = 0.0;      // [N]
+    double referenceForce = 0.0;     // [N], the rtol reference
+    std::vector<double> residuals;   // per Newton iteration of the successful attempt
+    std::string message;             // why it failed / how it converged
+    double assemblySeconds = 0.0;    // wall time in element loops (residual + tangent)
+    double linearSolveSeconds = 0.0; // wall time in MUMPS (analysis, factorization, solve)
 };
 
 class StructuralSolver
@@ -123,13 +124,14 @@ public:
     void rejectLevel();
 
     // Replicated on every rank.
-    const std::vector<double>& displacement() const { return u_; }   // 3 per node [m]
-    std::vector<double> wettedNodeCoordinates() const;                // 3 per node [m]
-    std::vector<double> wettedNodeDisplacements() const;              // 3 per node [m]
+    const std::vector<double>& displacement() const { return u_; } // 3 per node [m]
+    std::vector<double> wettedNodeCoordinates() const;             // 3 per node [m]
+    std::vector<double> wettedNodeDisplacements() const;           // 3 per node [m]
     const std::vector<int>& wettedNodes() const { return wettedNodes_; }
     // Nodal (volume-averaged) and cell-averaged Cauchy stress, Voigt tensor shear [Pa], at the
     // last solved state; replicated on every rank.
-    void cauchyStress(std::vector<material::Vector6>& nodal, std::vector<material::Vector6>& cells) const;
+    void cauchyStress(std::vector<material::Vector6>& nodal,
+                      std::vector<material::Vector6>& cells) const;
 
     const mesh::Mesh& mesh() const { return mesh_; }
     int numDofs() const { return 3 * mesh_.numNodes(); }
@@ -141,9 +143,11 @@ public:
     int ownedCells() const { return static_cast<int>(ownCells_.size()); }
 
 private:
-    SolveReport solveLevel(const material::TimeStep& step, const InterfaceLoads& interface, double loadFactor);
+    SolveReport solveLevel(const material::TimeStep& step, const InterfaceLoads& interface,
+                           double loadFactor);
     bool assemble(const std::vector<double>& u, bool withMatrix, std::vector<double>& fint);
-    void buildExternalLoads(double factor, const InterfaceLoads& interface, std::vector<double>& f) const;
+    void buildExternalLoads(double factor, const InterfaceLoads& interface,
+                            std::vector<double>& f) const;
     void applyPrescribed(double factor, std::vector<double>& u) const;
     bool newton(const std::vector<double>& fext, double factor, std::vector<double>& u,
                 SolveReport& report);
@@ -157,16 +161,16 @@ private:
     material::TimeStep step_{};
 
     std::vector<int> ownCells_;
-    std::vector<std::size_t> quadOffset_;     // per own cell into quad_
-    std::vector<int> pointOffset_;            // per own cell: first integration point
+    std::vector<std::size_t> quadOffset_; // per own cell into quad_
+    std::vector<int> pointOffset_;        // per own cell: first integration point
     std::vector<double> quad_;
-    std::vector<double> committedHistory_;    // own points x historySize
+    std::vector<double> committedHistory_; // own points x historySize
 
-    std::vector<int> equation_;               // dof -> free equation number or -1
+    std::vector<int> equation_; // dof -> free equation number or -1
     int numFree_ = 0;
     std::vector<int> prescribedDofs_;
-    std::vector<double> prescribedValues_;    // at load factor 1
-    std::vector<std::pair<int, int>> fieldNodes_;   // (node, index in problem_.displacements)
+    std::vector<double> prescribedValues_;        // at load factor 1
+    std::vector<std::pair<int, int>> fieldNodes_; // (node, index in problem_.displacements)
     std::vector<int> wettedNodes_;
 
     std::unique_ptr<linalg::SparseDirectSolver> linear_;

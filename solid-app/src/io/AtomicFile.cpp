@@ -6,7 +6,8 @@
 #include <stdexcept>
 #include <unistd.h>
 
-namespace fsi::io {
+namespace fsi::io
+{
 
 void writeFileAtomically(const std::string& path, const std::string& content)
 {
@@ -20,7 +21,8 @@ void writeFileAtomically(const std::string& path, const std::string& content)
         if (!out)
             throw std::runtime_error(path + ": write failed (disk full?)");
     }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    if (std::rename(tmp.c_str(), path.c_str()) != 0)
+    {
         std::remove(tmp.c_str());
         throw std::runtime_error(path + ": cannot rename the temporary file into place");
     }

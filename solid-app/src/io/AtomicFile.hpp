@@ -4,7 +4,8 @@
 #pragma once
 #include <string>
 
-namespace fsi::io {
+namespace fsi::io
+{
 
 void writeFileAtomically(const std::string& path, const std::string& content);
 

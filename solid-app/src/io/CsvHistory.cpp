@@ -5,14 +5,17 @@
 
 #include <cstdio>
 
-namespace fsi::io {
+namespace fsi::io
+{
 
-CsvHistory::CsvHistory(std::string path, const mesh::Mesh& mesh, const std::vector<std::string>& names,
+CsvHistory::CsvHistory(std::string path, const mesh::Mesh& mesh,
+                       const std::vector<std::string>& names,
                        const std::vector<std::array<double, 3>>& points)
     : path_(std::move(path))
 {
     header_ = "time";
-    for (std::size_t k = 0; k < names.size(); ++k) {
+    for (std::size_t k = 0; k < names.size(); ++k)
+    {
         const Eigen::Vector3d x(points[k][0], points[k][1], points[k][2]);
         const int node = mesh.nearestNode(x);
         nodes_.push_back(node);
@@ -28,7 +31,8 @@ void CsvHistory::record(double time, const std::vector<double>& u)
     std::snprintf(buf, sizeof buf, "%.10g", time);
     rows_ += buf;
     for (int node : nodes_)
-        for (int i = 0; i < 3; ++i) {
+        for (int i = 0; i < 3; ++i)
+        {
             std::snprintf(buf, sizeof buf, ",%.12e", u[3 * node + i]);
             rows_ += buf;
         }

@@ -9,7 +9,8 @@
 #include <string>
 #include <vector>
 
-namespace fsi::io {
+namespace fsi::io
+{
 
 class CsvHistory
 {

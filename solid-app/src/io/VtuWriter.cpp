@@ -10,8 +10,10 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace fsi::io {
-namespace {
+namespace fsi::io
+{
+namespace
+{
 
 using mesh::CellType;
 
@@ -21,13 +23,13 @@ using mesh::CellType;
 std::vector<int> prismOrder(CellType t)
 {
     const int corner[6] = {0, 2, 1, 3, 5, 4};
-    const std::vector<std::vector<int>> vtk = {{0}, {1}, {2}, {3}, {4}, {5},
-                                               {0, 1}, {1, 2}, {2, 0}, {3, 4}, {4, 5}, {5, 3},
-                                               {0, 3}, {1, 4}, {2, 5},
-                                               {0, 1, 4, 3}, {1, 2, 5, 4}, {2, 0, 3, 5}};
+    const std::vector<std::vector<int>> vtk = {
+        {0},    {1},    {2},    {3},    {4},    {5},    {0, 1},       {1, 2},       {2, 0},
+        {3, 4}, {4, 5}, {5, 3}, {0, 3}, {1, 4}, {2, 5}, {0, 1, 4, 3}, {1, 2, 5, 4}, {2, 0, 3, 5}};
     const auto& ref = mesh::ReferenceElement::get(t);
     std::vector<int> order;
-    for (int k = 0; k < ref.numNodes(); ++k) {
+    for (int k = 0; k < ref.numNodes(); ++k)
+    {
         Eigen::Vector3d x = Eigen::Vector3d::Zero();
         for (int c : vtk[k])
             x += ref.node(corner[c]) / static_cast<double>(vtk[k].size());
@@ -45,7 +47,8 @@ std::vector<int> prismOrder(CellType t)
 // VTK cell type and the Gmsh node index for each VTK node position.
 int vtkType(CellType t, std::vector<int>& order)
 {
-    switch (t) {
+    switch (t)
+    {
     case CellType::Tet4:
         order = {0, 1, 2, 3};
         return 10;
@@ -59,8 +62,8 @@ int vtkType(CellType t, std::vector<int>& order)
         order = {0, 1, 2, 3, 4, 5, 6, 7, 8, 11, 13, 9, 16, 18, 19, 17, 10, 12, 14, 15};
         return 25;
     case CellType::Hex27:
-        order = {0, 1, 2, 3, 4, 5, 6, 7, 8, 11, 13, 9, 16, 18, 19, 17, 10, 12, 14, 15,
-                 22, 23, 21, 24, 20, 25, 26};
+        order = {0,  1,  2,  3,  4,  5,  6,  7,  8,  11, 13, 9,  16, 18,
+                 19, 17, 10, 12, 14, 15, 22, 23, 21, 24, 20, 25, 26};
         return 29;
     case CellType::Prism6:
     case CellType::Prism15:
@@ -78,14 +81,16 @@ std::string base64(const std::vector<unsigned char>& in)
     std::string out;
     out.reserve((in.size() + 2) / 3 * 4);
     std::size_t i = 0;
-    for (; i + 2 < in.size(); i += 3) {
+    for (; i + 2 < in.size(); i += 3)
+    {
         const unsigned v = (in[i] << 16) | (in[i + 1] << 8) | in[i + 2];
         out += table[(v >> 18) & 63];
         out += table[(v >> 12) & 63];
         out += table[(v >> 6) & 63];
         out += table[v & 63];
     }
-    if (i < in.size()) {
+    if (i < in.size())
+    {
         unsigned v = in[i] << 16;
         if (i + 1 < in.size())
             v |= in[i + 1] << 8;
@@ -103,23 +108,28 @@ public:
     ArrayWriter(std::ostringstream& out, bool binary) : out_(out), binary_(binary) {}
 
     template <typename T>
-    void write(const std::string& name, const char* vtkTypeName, int components, const std::vector<T>& data)
+    void write(const std::string& name, const char* vtkTypeName, int components,
+               const std::vector<T>& data)
     {
         out_ << "        <DataArray type=\"" << vtkTypeName << "\" Name=\"" << name << "\"";
         if (components > 1)
             out_ << " NumberOfComponents=\"" << components << "\"";
         out_ << " format=\"" << (binary_ ? "binary" : "ascii") << "\">\n";
-        if (binary_) {
+        if (binary_)
+        {
             const std::uint64_t bytes = data.size() * sizeof(T);
             std::vector<unsigned char> raw(sizeof(bytes) + bytes);
             std::memcpy(raw.data(), &bytes, sizeof(bytes));
             if (bytes)
                 std::memcpy(raw.data() + sizeof(bytes), data.data(), bytes);
             out_ << base64(raw) << "\n";
-        } else {
+        }
+        else
+        {
             out_ << std::setprecision(12);
             for (std::size_t i = 0; i < data.size(); ++i)
-                out_ << (i % 9 == 0 ? "" : " ") << +data[i] << ((i % 9 == 8 || i + 1 == data.size()) ? "\n" : "");
+                out_ << (i % 9 == 0 ? "" : " ") << +data[i]
+                     << ((i % 9 == 8 || i + 1 == data.size()) ? "\n" : "");
         }
         out_ << "        </DataArray>\n";
     }
@@ -132,7 +142,8 @@ private:
 void stressArrays(ArrayWriter& w, const std::vector<Vector6>& s)
 {
     std::vector<double> flat, vm;
-    for (const auto& v : s) {
+    for (const auto& v : s)
+    {
         flat.insert(flat.end(), v.data(), v.data() + 6);
         vm.push_back(vonMisesStress(v));
     }
@@ -145,17 +156,20 @@ void stressArrays(ArrayWriter& w, const std::vector<Vector6>& s)
 double vonMisesStress(const Vector6& s)
 {
     const double a = s[0] - s[1], b = s[1] - s[2], c = s[2] - s[0];
-    return std::sqrt(0.5 * (a * a + b * b + c * c) + 3.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]));
+    return std::sqrt(0.5 * (a * a + b * b + c * c) +
+                     3.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]));
 }
 
-void writeVtu(const std::string& path, const mesh::Mesh& mesh, const SolidFields& fields, bool binary)
+void writeVtu(const std::string& path, const mesh::Mesh& mesh, const SolidFields& fields,
+              bool binary)
 {
     const auto& cells = mesh.cells;
     std::vector<double> points(mesh.nodes.data(), mesh.nodes.data() + 3 * mesh.numNodes());
     std::vector<std::int64_t> connectivity, offsets;
     std::vector<std::uint8_t> types;
     std::vector<int> order;
-    for (int c = 0; c < cells.size(); ++c) {
+    for (int c = 0; c < cells.size(); ++c)
+    {
         types.push_back(static_cast<std::uint8_t>(vtkType(cells.types[c], order)));
         for (int k : order)
             connectivity.push_back(cells.nodes(c)[k]);
@@ -164,7 +178,8 @@ void writeVtu(const std::string& path, const mesh::Mesh& mesh, const SolidFields
     std::ostringstream out;
     out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
            "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n  <UnstructuredGrid>\n"
-        << "    <Piece NumberOfPoints=\"" << mesh.numNodes() << "\" NumberOfCells=\"" << cells.size() << "\">\n";
+        << "    <Piece NumberOfPoints=\"" << mesh.numNodes() << "\" NumberOfCells=\""
+        << cells.size() << "\">\n";
     ArrayWriter w(out, binary);
     out << "      <Points>\n";
     w.write("Points", "Float64", 3, points);
@@ -184,15 +199,20 @@ void writeVtu(const std::string& path, const mesh::Mesh& mesh, const SolidFields
     writeFileAtomically(path, out.str());
 }
 
-void PvdSeries::add(double time, const std::string& file) { entries_.emplace_back(time, file); }
+void PvdSeries::add(double time, const std::string& file)
+{
+    entries_.emplace_back(time, file);
+}
 
 void PvdSeries::write() const
 {
     std::ostringstream out;
     out << std::setprecision(12)
-        << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n";
+        << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  "
+           "<Collection>\n";
     for (const auto& e : entries_)
-        out << "    <DataSet timestep=\"" << e.first << "\" part=\"0\" file=\"" << e.second << "\"/>\n";
+        out << "    <DataSet timestep=\"" << e.first << "\" part=\"0\" file=\"" << e.second
+            << "\"/>\n";
     out << "  </Collection>\n</VTKFile>\n";
     writeFileAtomically(path_, out.str());
 }

@@ -11,20 +11,22 @@
 #include <string>
 #include <vector>
 
-namespace fsi::io {
+namespace fsi::io
+{
 
 using Vector6 = Eigen::Matrix<double, 6, 1>;
 
 struct SolidFields
 {
-    const std::vector<double>* displacement = nullptr;   // 3 per node [m]
-    const std::vector<Vector6>* nodalStress = nullptr;   // Cauchy, Voigt tensor shear [Pa]
-    const std::vector<Vector6>* cellStress = nullptr;    // Cauchy, per cell [Pa]
+    const std::vector<double>* displacement = nullptr; // 3 per node [m]
+    const std::vector<Vector6>* nodalStress = nullptr; // Cauchy, Voigt tensor shear [Pa]
+    const std::vector<Vector6>* cellStress = nullptr;  // Cauchy, per cell [Pa]
 };
 
 // Writes one .vtu (atomically). binary: inline base64 raw data, else ASCII.
 // Point data: displacement, cauchy_stress (xx yy zz xy yz xz), von_mises; cell data likewise.
-void writeVtu(const std::string& path, const mesh::Mesh& mesh, const SolidFields& fields, bool binary);
+void writeVtu(const std::string& path, const mesh::Mesh& mesh, const SolidFields& fields,
+              bool binary);
 
 // A ParaView .pvd series: add() a (time, file name relative to the .pvd) then write() it
 // again atomically each level, so the series on disk is always complete.

@@ -9,8 +9,10 @@
 #include <stdexcept>
 #include <unordered_map>
 
-namespace fsi::mesh {
-namespace {
+namespace fsi::mesh
+{
+namespace
+{
 
 // Gmsh keeps global state: initialise once per read and always finalise.
 struct GmshSession
@@ -29,7 +31,8 @@ int findPhysical(int dim, const std::string& name)
 {
     gmsh::vectorpair groups;
     gmsh::model::getPhysicalGroups(groups, dim);
-    for (const auto& g : groups) {
+    for (const auto& g : groups)
+    {
         std::string n;
         gmsh::model::getPhysicalName(g.first, g.second, n);
         if (n == name)
@@ -43,7 +46,8 @@ std::string availableGroups(int dim)
     gmsh::vectorpair groups;
     gmsh::model::getPhysicalGroups(groups, dim);
     std::string list;
-    for (const auto& g : groups) {
+    for (const auto& g : groups)
+    {
         std::string n;
         gmsh::model::getPhysicalName(g.first, g.second, n);
         list += (list.empty() ? "" : ", ") + (n.empty() ? std::to_string(g.second) : "'" + n + "'");
@@ -58,29 +62,36 @@ void readCells(int dim, int physical, const std::string& file, const std::string
     std::vector<int> entities;
     gmsh::model::getEntitiesForPhysicalGroup(dim, physical, entities);
     std::vector<int> conn;
-    for (int entity : entities) {
+    for (int entity : entities)
+    {
         std::vector<int> types;
         std::vector<std::vector<std::size_t>> tags, nodes;
         gmsh::model::mesh::getElements(types, tags, nodes, dim, entity);
-        for (std::size_t t = 0; t < types.size(); ++t) {
+        for (std::size_t t = 0; t < types.size(); ++t)
+        {
             CellType type;
-            if (!cellTypeFromGmsh(types[t], type)) {
+            if (!cellTypeFromGmsh(types[t], type))
+            {
                 std::string name;
                 int d, o, nn, np;
                 std::vector<double> c;
                 gmsh::model::mesh::getElementProperties(types[t], name, d, o, nn, c, np);
-                throw std::runtime_error(file + ": physical group '" + group + "' has " + name +
-                                         " elements, which are not supported (use Tet10, "
-                                         "Hex20/Hex27, Prism15/18, Tet4, Hex8 or Prism6; pyramids are not supported)");
+                throw std::runtime_error(
+                    file + ": physical group '" + group + "' has " + name +
+                    " elements, which are not supported (use Tet10, "
+                    "Hex20/Hex27, Prism15/18, Tet4, Hex8 or Prism6; pyramids are not supported)");
             }
             const int n = ReferenceElement::get(type).numNodes();
             const std::size_t count = tags[t].size();
-            for (std::size_t e = 0; e < count; ++e) {
+            for (std::size_t e = 0; e < count; ++e)
+            {
                 conn.assign(n, -1);
-                for (int a = 0; a < n; ++a) {
+                for (int a = 0; a < n; ++a)
+                {
                     const std::size_t tag = nodes[t][e * n + a];
                     auto it = nodeIndex.find(tag);
-                    if (it == nodeIndex.end()) {
+                    if (it == nodeIndex.end())
+                    {
                         if (!createNodes)
                             throw std::runtime_error(file + ": surface group '" + group +
                                                      "' has nodes that are not on the volume");
@@ -102,11 +113,16 @@ Mesh readGmsh(const std::string& file, const MeshSelection& selection, bool quie
     if (!std::ifstream(file).good())
         throw std::runtime_error(file + ": cannot open mesh file");
     GmshSession session;
-    try {
+    try
+    {
         gmsh::open(file);
-    } catch (const std::exception& e) {
+    }
+    catch (const std::exception& e)
+    {
         throw std::runtime_error(file + ": Gmsh cannot read the mesh (" + e.what() + ")");
-    } catch (...) {
+    }
+    catch (...)
+    {
         throw std::runtime_error(file + ": Gmsh cannot read the mesh");
     }
     Mesh mesh;
@@ -127,17 +143,21 @@ Mesh readGmsh(const std::string& file, const MeshSelection& selection, bool quie
     gmsh::model::mesh::getNodes(allTags, coords, parametric, -1, -1, false, false);
     mesh.nodes.resize(3, static_cast<Eigen::Index>(nodeTags.size()));
     std::vector<char> seen(nodeTags.size(), 0);
-    for (std::size_t i = 0; i < allTags.size(); ++i) {
+    for (std::size_t i = 0; i < allTags.size(); ++i)
+    {
         auto it = nodeIndex.find(allTags[i]);
-        if (it != nodeIndex.end()) {
-            mesh.nodes.col(it->second) = Eigen::Vector3d(coords[3 * i], coords[3 * i + 1], coords[3 * i + 2]);
+        if (it != nodeIndex.end())
+        {
+            mesh.nodes.col(it->second) =
+                Eigen::Vector3d(coords[3 * i], coords[3 * i + 1], coords[3 * i + 2]);
             seen[it->second] = 1;
         }
     }
     if (std::find(seen.begin(), seen.end(), 0) != seen.end())
         throw std::runtime_error(file + ": some cell nodes have no coordinates");
 
-    for (const std::string& name : selection.surfaces) {
+    for (const std::string& name : selection.surfaces)
+    {
         if (mesh.surfaces.count(name))
             continue;
         const int tag = findPhysical(2, name);
@@ -155,10 +175,12 @@ Mesh readGmsh(const std::string& file, const MeshSelection& selection, bool quie
         mesh.surfaces.emplace(name, std::move(group));
     }
     mesh.checkJacobians();
-    if (!quiet) {
+    if (!quiet)
+    {
         const auto counts = mesh.cellTypeCounts();
         if (counts.count("Tet4") || counts.count("Hex8") || counts.count("Prism6"))
-            std::cerr << "warning: " << file << ": linear Tet4/Hex8/Prism6 cells lock volumetrically "
+            std::cerr << "warning: " << file
+                      << ": linear Tet4/Hex8/Prism6 cells lock volumetrically "
                       << "for nu -> 0.5 (use Tet10 or Hex20)\n";
     }
     return mesh;

@@ -5,7 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace fsi::mesh {
+namespace fsi::mesh
+{
 
 void CellList::add(CellType type, const int* n, int count)
 {
@@ -42,7 +43,8 @@ double Mesh::minJacobian(int c) const
     Eigen::MatrixXd dN;
     double minDet = std::numeric_limits<double>::max();
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-    for (int a = 0; a <= n; ++a) {
+    for (int a = 0; a <= n; ++a)
+    {
         const Eigen::Vector3d xi = a < n ? ref.node(a) : centroid;
         if (a < n)
             centroid += ref.node(a) / n;
@@ -55,12 +57,15 @@ double Mesh::minJacobian(int c) const
 
 void Mesh::checkJacobians() const
 {
-    for (int c = 0; c < cells.size(); ++c) {
+    for (int c = 0; c < cells.size(); ++c)
+    {
         const double det = minJacobian(c);
-        if (!(det > 0.0)) {
+        if (!(det > 0.0))
+        {
             std::ostringstream msg;
-            msg << source << ": inverted or degenerate " << ReferenceElement::get(cells.types[c]).name()
-                << " cell " << c << " (Jacobian determinant " << det
+            msg << source << ": inverted or degenerate "
+                << ReferenceElement::get(cells.types[c]).name() << " cell " << c
+                << " (Jacobian determinant " << det
                 << " <= 0); fix the node ordering or the geometry";
             throw std::runtime_error(msg.str());
         }
@@ -71,9 +76,11 @@ int Mesh::nearestNode(const Eigen::Vector3d& x) const
 {
     int best = -1;
     double bestDist = std::numeric_limits<double>::max();
-    for (int i = 0; i < numNodes(); ++i) {
+    for (int i = 0; i < numNodes(); ++i)
+    {
         const double d = (nodes.col(i) - x).squaredNorm();
-        if (d < bestDist) {
+        if (d < bestDist)
+        {
             bestDist = d;
             best = i;
         }

@@ -9,13 +9,14 @@
 #include <string>
 #include <vector>
 
-namespace fsi::mesh {
+namespace fsi::mesh
+{
 
 // A list of cells of mixed types with a flat connectivity (0-based node indices).
 struct CellList
 {
     std::vector<CellType> types;
-    std::vector<int> offsets{0};   // cell c uses connectivity[offsets[c] .. offsets[c+1])
+    std::vector<int> offsets{0}; // cell c uses connectivity[offsets[c] .. offsets[c+1])
     std::vector<int> connectivity;
 
     int size() const { return static_cast<int>(types.size()); }
@@ -29,14 +30,14 @@ struct SurfaceGroup
 {
     std::string name;
     CellList faces;
-    std::vector<int> nodes;   // sorted, unique node indices of the faces
+    std::vector<int> nodes; // sorted, unique node indices of the faces
 };
 
 struct Mesh
 {
-    std::string source;                        // file name, for messages
-    Eigen::Matrix3Xd nodes;                    // reference coordinates, one column per node
-    CellList cells;                            // volume cells
+    std::string source;     // file name, for messages
+    Eigen::Matrix3Xd nodes; // reference coordinates, one column per node
+    CellList cells;         // volume cells
     std::map<std::string, SurfaceGroup> surfaces;
 
     int numNodes() const { return static_cast<int>(nodes.cols()); }
@@ -55,8 +56,8 @@ struct Mesh
 // What to read: the volume group and the surface groups needed by the case.
 struct MeshSelection
 {
-    std::string volume;                  // physical group (dim 3) holding the cells
-    std::vector<std::string> surfaces;   // physical groups (dim 2) that must exist
+    std::string volume;                // physical group (dim 3) holding the cells
+    std::vector<std::string> surfaces; // physical groups (dim 2) that must exist
 };
 
 // Reads a Gmsh .msh (v2 or v4) file through the Gmsh API. Throws std::runtime_error with a

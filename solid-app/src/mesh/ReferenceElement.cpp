@@ -7,8 +7,10 @@
 #include <memory>
 #include <stdexcept>
 
-namespace fsi::mesh {
-namespace {
+namespace fsi::mesh
+{
+namespace
+{
 
 using V = Eigen::Vector3i;
 
@@ -40,18 +42,25 @@ std::vector<V> completeMonomials(int dim, int degree)
     return m;
 }
 
-double power(double x, int p) { return p == 0 ? 1.0 : std::pow(x, p); }
-double dpower(double x, int p) { return p == 0 ? 0.0 : p * power(x, p - 1); }
+double power(double x, int p)
+{
+    return p == 0 ? 1.0 : std::pow(x, p);
+}
+double dpower(double x, int p)
+{
+    return p == 0 ? 0.0 : p * power(x, p - 1);
+}
 
 } // namespace
 
 bool cellTypeFromGmsh(int gmshType, CellType& type)
 {
     static const std::map<int, CellType> table = {
-        {4, CellType::Tet4},  {11, CellType::Tet10}, {5, CellType::Hex8},
-        {17, CellType::Hex20}, {12, CellType::Hex27}, {2, CellType::Tri3},
-        {9, CellType::Tri6},  {3, CellType::Quad4},  {16, CellType::Quad8},
-        {10, CellType::Quad9}, {6, CellType::Prism6}, {18, CellType::Prism15}, {13, CellType::Prism18}};
+        {4, CellType::Tet4},    {11, CellType::Tet10}, {5, CellType::Hex8},
+        {17, CellType::Hex20},  {12, CellType::Hex27}, {2, CellType::Tri3},
+        {9, CellType::Tri6},    {3, CellType::Quad4},  {16, CellType::Quad8},
+        {10, CellType::Quad9},  {6, CellType::Prism6}, {18, CellType::Prism15},
+        {13, CellType::Prism18}};
     auto it = table.find(gmshType);
     if (it == table.end())
         return false;
@@ -62,18 +71,40 @@ bool cellTypeFromGmsh(int gmshType, CellType& type)
 ReferenceElement::ReferenceElement(CellType type) : type_(type)
 {
     // Node tables copied from gmsh::model::mesh::getElementProperties (checked by a test).
-    const auto hexVertices = {std::array<double, 3>{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
-                              {-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}};
-    const auto hexEdges = {std::array<double, 3>{0, -1, -1}, {-1, 0, -1}, {-1, -1, 0}, {1, 0, -1},
-                           {1, -1, 0}, {0, 1, -1}, {1, 1, 0}, {-1, 1, 0},
-                           {0, -1, 1}, {-1, 0, 1}, {1, 0, 1}, {0, 1, 1}};
-    const auto hexFaces = {std::array<double, 3>{0, 0, -1}, {0, -1, 0}, {-1, 0, 0}, {1, 0, 0},
-                           {0, 1, 0}, {0, 0, 1}, {0, 0, 0}};
-    auto append = [this](std::initializer_list<std::array<double, 3>> l) {
+    const auto hexVertices = {std::array<double, 3>{-1, -1, -1},
+                              {1, -1, -1},
+                              {1, 1, -1},
+                              {-1, 1, -1},
+                              {-1, -1, 1},
+                              {1, -1, 1},
+                              {1, 1, 1},
+                              {-1, 1, 1}};
+    const auto hexEdges = {std::array<double, 3>{0, -1, -1},
+                           {-1, 0, -1},
+                           {-1, -1, 0},
+                           {1, 0, -1},
+                           {1, -1, 0},
+                           {0, 1, -1},
+                           {1, 1, 0},
+                           {-1, 1, 0},
+                           {0, -1, 1},
+                           {-1, 0, 1},
+                           {1, 0, 1},
+                           {0, 1, 1}};
+    const auto hexFaces = {std::array<double, 3>{0, 0, -1},
+                           {0, -1, 0},
+                           {-1, 0, 0},
+                           {1, 0, 0},
+                           {0, 1, 0},
+                           {0, 0, 1},
+                           {0, 0, 0}};
+    auto append = [this](std::initializer_list<std::array<double, 3>> l)
+    {
         for (auto& p : points(l))
             nodes_.push_back(p);
     };
-    switch (type) {
+    switch (type)
+    {
     case CellType::Tet4:
         name_ = "Tet4";
         append({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}});
@@ -82,8 +113,16 @@ ReferenceElement::ReferenceElement(CellType type) : type_(type)
     case CellType::Tet10:
         name_ = "Tet10";
         order_ = 2;
-        append({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {.5, 0, 0}, {.5, .5, 0}, {0, .5, 0},
-                {0, 0, .5}, {0, .5, .5}, {.5, 0, .5}});
+        append({{0, 0, 0},
+                {1, 0, 0},
+                {0, 1, 0},
+                {0, 0, 1},
+                {.5, 0, 0},
+                {.5, .5, 0},
+                {0, .5, 0},
+                {0, 0, .5},
+                {0, .5, .5},
+                {.5, 0, .5}});
         monomials_ = completeMonomials(3, 2);
         break;
     case CellType::Hex8:
@@ -99,7 +138,8 @@ ReferenceElement::ReferenceElement(CellType type) : type_(type)
         append(hexVertices);
         append(hexEdges);
         // serendipity: all monomials of Q2 except those with two or three squared factors
-        for (const V& m : tensorMonomials(3, 2)) {
+        for (const V& m : tensorMonomials(3, 2))
+        {
             const int squares = (m[0] == 2) + (m[1] == 2) + (m[2] == 2);
             const int degree = m.sum();
             if (squares <= 1 && !(squares == 1 && degree > 4) && degree <= 4)
@@ -141,12 +181,21 @@ ReferenceElement::ReferenceElement(CellType type) : type_(type)
         dim_ = 2;
         simplex_ = false;
         order_ = 2;
-        append({{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}, {0, -1, 0}, {1, 0, 0}, {0, 1, 0},
+        append({{-1, -1, 0},
+                {1, -1, 0},
+                {1, 1, 0},
+                {-1, 1, 0},
+                {0, -1, 0},
+                {1, 0, 0},
+                {0, 1, 0},
                 {-1, 0, 0}});
-        if (type == CellType::Quad9) {
+        if (type == CellType::Quad9)
+        {
             append({{0, 0, 0}});
             monomials_ = tensorMonomials(2, 2);
-        } else {
+        }
+        else
+        {
             for (const V& m : tensorMonomials(2, 2))
                 if (!(m[0] == 2 && m[1] == 2))
                     monomials_.push_back(m);
@@ -154,11 +203,13 @@ ReferenceElement::ReferenceElement(CellType type) : type_(type)
         break;
     case CellType::Prism6:
     case CellType::Prism15:
-    case CellType::Prism18: {
+    case CellType::Prism18:
+    {
         // triangle (u, v) x line (w in [-1, 1]); Gmsh node table
         simplex_ = false;
         append({{0, 0, -1}, {1, 0, -1}, {0, 1, -1}, {0, 0, 1}, {1, 0, 1}, {0, 1, 1}});
-        if (type == CellType::Prism6) {
+        if (type == CellType::Prism6)
+        {
             name_ = "Prism6";
             for (const V& m : completeMonomials(2, 1))
                 for (int k = 0; k <= 1; ++k)
@@ -166,16 +217,26 @@ ReferenceElement::ReferenceElement(CellType type) : type_(type)
             break;
         }
         order_ = 2;
-        append({{.5, 0, -1}, {0, .5, -1}, {0, 0, 0}, {.5, .5, -1}, {1, 0, 0}, {0, 1, 0},
-                {.5, 0, 1}, {0, .5, 1}, {.5, .5, 1}});
-        if (type == CellType::Prism18) {
+        append({{.5, 0, -1},
+                {0, .5, -1},
+                {0, 0, 0},
+                {.5, .5, -1},
+                {1, 0, 0},
+                {0, 1, 0},
+                {.5, 0, 1},
+                {0, .5, 1},
+                {.5, .5, 1}});
+        if (type == CellType::Prism18)
+        {
             name_ = "Prism18";
             append({{.5, 0, 0}, {0, .5, 0}, {.5, .5, 0}});
             for (const V& m : completeMonomials(2, 2))
                 for (int k = 0; k <= 2; ++k)
                     monomials_.emplace_back(m[0], m[1], k);
-        } else {
-            name_ = "Prism15";   // P2(u, v) x {1, w}  +  P1(u, v) x {w^2}
+        }
+        else
+        {
+            name_ = "Prism15"; // P2(u, v) x {1, w}  +  P1(u, v) x {w^2}
             for (const V& m : completeMonomials(2, 2))
                 for (int k = 0; k <= 1; ++k)
                     monomials_.emplace_back(m[0], m[1], k);
@@ -217,7 +278,8 @@ void ReferenceElement::evaluate(const Eigen::Vector3d& xi, Eigen::VectorXd& N,
     const int n = numNodes();
     Eigen::VectorXd p(n);
     Eigen::MatrixXd dp(n, dim_);
-    for (int j = 0; j < n; ++j) {
+    for (int j = 0; j < n; ++j)
+    {
         const V& m = monomials_[j];
         const double px = power(xi[0], m[0]), py = power(xi[1], m[1]), pz = power(xi[2], m[2]);
         p[j] = px * py * pz;

@@ -7,12 +7,26 @@
 #include <string>
 #include <vector>
 
-namespace fsi::mesh {
+namespace fsi::mesh
+{
 
 // Volume cells and boundary faces understood by the solver (Gmsh type ids in comments).
-enum class CellType { Tet4, Tet10, Hex8, Hex20, Hex27,   // 4, 11, 5, 17, 12
-                      Tri3, Tri6, Quad4, Quad8, Quad9,   // 2, 9, 3, 16, 10
-                      Prism6, Prism15, Prism18 };        // 6, 18, 13
+enum class CellType
+{
+    Tet4,
+    Tet10,
+    Hex8,
+    Hex20,
+    Hex27, // 4, 11, 5, 17, 12
+    Tri3,
+    Tri6,
+    Quad4,
+    Quad8,
+    Quad9, // 2, 9, 3, 16, 10
+    Prism6,
+    Prism15,
+    Prism18
+}; // 6, 18, 13
 constexpr int numCellTypes = 13;
 
 class ReferenceElement
@@ -40,7 +54,7 @@ private:
     int order_ = 1;
     bool simplex_ = true;
     std::vector<Eigen::Vector3d> nodes_;
-    std::vector<Eigen::Vector3i> monomials_;   // exponents of the basis
+    std::vector<Eigen::Vector3i> monomials_; // exponents of the basis
     Eigen::MatrixXd coefficients_;           // N = coefficients_^T p(xi)
 };
 
