@@ -313,5 +313,10 @@ TEST(Newton, StallIsReportedNotAccepted)
     EXPECT_FALSE(report.converged);
     EXPECT_FALSE(report.message.empty());
     EXPECT_THROW(solver.acceptLevel(), std::runtime_error);
+    // the driver can fall back to the last accepted state and go on from there
+    solver.rejectLevel();
+    for (double u : solver.displacement())
+        EXPECT_EQ(u, 0.0);
+    EXPECT_NO_THROW(solver.acceptLevel());
     std::printf("stalled Newton reported: %s\n", report.message.c_str());
 }

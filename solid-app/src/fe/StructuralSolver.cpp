@@ -572,6 +572,8 @@ void StructuralSolver::acceptLevel()
 void StructuralSolver::rejectLevel()
 {
     u_ = uCommitted_;
+    fextLast_ = fextCommitted_;
+    factorLast_ = factorCommitted_;
     lastConverged_ = true;
 }
 
