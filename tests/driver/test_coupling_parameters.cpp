@@ -60,7 +60,9 @@ TEST(CouplingParameters, ShippedExampleParses)
     EXPECT_DOUBLE_EQ(p.time.end, 3600.0);
     ASSERT_TRUE(p.sectionAngle.has_value());
     EXPECT_DOUBLE_EQ(p.sectionAngle->liftDirection[1], -1.0);
-    EXPECT_NE(p.echo().find("rbf-wendland-c2: {support_radius: 0.004}"), std::string::npos);
+    EXPECT_EQ(p.mapping.wendland.solver, "auto");
+    EXPECT_EQ(p.mapping.wendland.directMaxPoints, 20000);
+    EXPECT_NE(p.echo().find("rbf-wendland-c2: {support_radius: 0.004, solver: auto"), std::string::npos);
 }
 
 TEST(CouplingParameters, MinimalBlockHasSteadyDefaults)

@@ -77,8 +77,11 @@ mapping::MappingParameters parseMapping(const config::Block& b)
     if (p.type == "rbf-wendland-c2")
     {
         auto c = b.block("rbf-wendland-c2");
-        c.allowOnly({"support_radius"});
+        c.allowOnly({"support_radius", "solver", "direct_max_points", "iterative_tolerance"});
         p.wendland.supportRadius = c.number("support_radius");
+        p.wendland.solver = c.choice("solver", {"auto", "direct", "iterative"}, p.wendland.solver);
+        p.wendland.directMaxPoints = c.integer("direct_max_points", static_cast<int>(p.wendland.directMaxPoints));
+        p.wendland.iterativeTolerance = c.number("iterative_tolerance", p.wendland.iterativeTolerance);
     }
     else if (p.type == "rbf-thin-plate" && b.has("rbf-thin-plate"))
     {
@@ -234,7 +237,10 @@ std::string CouplingParameters::echo() const
     s << "  mapping:\n    type: " << mapping.type << "\n    overlap_tolerance: "
       << mapping.overlapTolerance << "\n";
     if (mapping.type == "rbf-wendland-c2")
-        s << "    rbf-wendland-c2: {support_radius: " << mapping.wendland.supportRadius << "}\n";
+        s << "    rbf-wendland-c2: {support_radius: " << mapping.wendland.supportRadius
+          << ", solver: " << mapping.wendland.solver
+          << ", direct_max_points: " << mapping.wendland.directMaxPoints
+          << ", iterative_tolerance: " << mapping.wendland.iterativeTolerance << "}\n";
     s << "  time: {type: " << time.type;
     if (time.type == "list")
     {
