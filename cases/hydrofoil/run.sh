@@ -6,7 +6,7 @@
 #
 # Options (after the case):
 #   --material viscoelastic|baseline|both   which runs (default both: the paper's comparison)
-#   --np-fluid N --np-solid M               ranks of each program (default 1 and 1)
+#   --np-fluid N --np-solid M               ranks of each program (default 2 and 1)
 #   --launch mpmd|port                      one mpirun A : B (default) or two + ompi-server
 #   --tc T --cli C                          section thickness ratio and design lift (0.12, 0.5)
 #   --end SECONDS                           last time level of the viscoelastic run (3600)
@@ -18,7 +18,7 @@ set -euo pipefail
 : "${FSI_ROOT:?run through ./scripts/run cases/hydrofoil (FSI_ROOT unset)}"
 source "$FSI_ROOT/scripts/env.sh"
 
-preset=coarse material=both npf=1 nps=1 launch=mpmd tc=0.12 cli=0.5 end="" timeout=900
+preset=coarse material=both npf=2 nps=1 launch=mpmd tc=0.12 cli=0.5 end="" timeout=900
 die() { echo "error: hydrofoil/run.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
   case "$1" in
