@@ -11,6 +11,7 @@
 #   --tc T --cli C                          section thickness ratio and design lift (0.12, 0.5)
 #   --end SECONDS                           last time level of the viscoelastic run (3600)
 #   --timeout SECONDS                       longest wait for the peer (default 900)
+#   --mesh-from DIR                         reuse the meshes of an earlier run folder (DIR/mesh)
 # Writes results/: history.csv (viscoelastic, one row per level), baseline/ and visco/ (solid-app
 # outputs: coupling.csv, history.csv, interface/, solid_*.vtu + solid.pvd), summary.csv and the
 # PNG plots; the fluid fields of accepted levels are in fluid-*/ (OpenFOAM time folders).
@@ -18,7 +19,7 @@ set -euo pipefail
 : "${FSI_ROOT:?run through ./scripts/run cases/hydrofoil (FSI_ROOT unset)}"
 source "$FSI_ROOT/scripts/env.sh"
 
-preset=coarse material=both npf=2 nps=1 launch=mpmd tc=0.12 cli=0.5 end="" timeout=900
+preset=coarse material=both npf=2 nps=1 launch=mpmd tc=0.12 cli=0.5 end="" timeout=900 meshFrom=""
 die() { echo "error: hydrofoil/run.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -31,7 +32,8 @@ while [ $# -gt 0 ]; do
     --cli) cli=$2; shift 2 ;;
     --end) end=$2; shift 2 ;;
     --timeout) timeout=$2; shift 2 ;;
-    -h|--help) sed -n '3,17p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    --mesh-from) meshFrom=$2; shift 2 ;;
+    -h|--help) sed -n '3,18p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) die "unknown option '$1' (see --help)" ;;
   esac
 done
@@ -44,9 +46,15 @@ run=$PWD
 log() { echo "[hydrofoil $(date +%H:%M:%S)] $*"; }
 start=$(date +%s)
 
-log "meshing (preset $preset, t/c $tc, C_Li $cli)"
-"$FSI_ROOT/cases/hydrofoil/mesh.sh" --out "$run/mesh" --preset "$preset" --tc "$tc" --cli "$cli" \
-    --np "$npf" > "$run/log.mesh" 2>&1 || { tail -n 20 "$run/log.mesh" >&2; die "meshing failed (log.mesh)"; }
+if [ -n "$meshFrom" ]; then
+  [ -f "$meshFrom/mesh/mesh-summary.txt" ] || die "--mesh-from $meshFrom: no mesh/mesh-summary.txt there"
+  log "reusing the meshes of $meshFrom"
+  rm -rf "$run/mesh" && cp -r "$meshFrom/mesh" "$run/mesh"
+else
+  log "meshing (preset $preset, t/c $tc, C_Li $cli)"
+  "$FSI_ROOT/cases/hydrofoil/mesh.sh" --out "$run/mesh" --preset "$preset" --tc "$tc" --cli "$cli" \
+      --np "$npf" > "$run/log.mesh" 2>&1 || { tail -n 20 "$run/log.mesh" >&2; die "meshing failed (log.mesh)"; }
+fi
 grep -E "^fluid:|^solid" "$run/mesh/mesh-summary.txt" 2>/dev/null | sed 's/^/  /' || true
 solidMesh=$run/mesh/solid/foil-tet10.msh
 [ -f "$solidMesh" ] || die "no structural mesh $solidMesh"
