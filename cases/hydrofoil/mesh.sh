@@ -42,11 +42,11 @@ while [ $# -gt 0 ]; do
 done
 [ -n "$out" ] || die "--out DIR is required (a run folder outside git, e.g. /tmp/hydrofoil-coarse)"
 [ -f "$here/fluid/system/presets/$preset" ] || die "--preset '$preset' unknown; use coarse, medium or fine"
-mkdir -p "$out"
-out="$(cd "$out" && pwd)"
+out="$(realpath -m "$out")"
 case "$out/" in
     "$here"/*) die "--out '$out' is inside cases/hydrofoil; generate into a run folder outside git" ;;
 esac
+mkdir -p "$out"
 
 # Solid mesh presets: Tet10 size lc (m; lc/4 at the leading and trailing edges); Hex divisions
 # along the chord (each of upper and lower side) x through the thickness x along the span
