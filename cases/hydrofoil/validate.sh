@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Rigid-foil check of the fluid case with Debian's stock simpleFoam (no mesh motion).
 #
-#   cases/hydrofoil/validate.sh --mesh DIR/fluid --out RUNDIR [--scheme linearUpwind|upwind|
+#   cases/hydrofoil/validate.sh --mesh DIR/fluid --out RUNDIR [--scheme upwind|linearUpwind|
 #       limitedLinearV] [--np 1|2] [--iterations 300] [--simple simplec|simple]
 #
 # Copies the meshed case DIR/fluid (from mesh.sh) to RUNDIR, removes constant/dynamicMeshDict
@@ -13,7 +13,7 @@
 # iteration.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-mesh="" out="" scheme=linearUpwind np=1 iterations=300 simple=simplec
+mesh="" out="" scheme=upwind np=1 iterations=300 simple=simplec
 die() { echo "error: validate.sh: $*" >&2; exit 1; }
 while [ $# -gt 0 ]; do
     case "$1" in
