@@ -5,7 +5,7 @@
 //     {nPoints, nFaces}) -> InterfaceGeometry: values = point coordinates
 //     (3 nPoints), face centres (3 nFaces), face area vectors (3 nFaces);
 //   loop: Solve (values = 3 nPoints displacements [m]) -> Forces (values =
-//     3 nFaces forces [N], integers = {SIMPLE iterations}, scalars =
+//     3 nFaces forces [N], integers = {SIMPLE iterations, converged 0/1}, scalars =
 //     {residual U, residual p}, same step/iteration as the Solve);
 //     Accept (scalars[0] = time [s] if given, else the step index names the
 //     output folder); Finish -> close, exit 0; Abort -> exit 5 with the reason.
@@ -99,7 +99,7 @@ public:
             m.timeStep = solve.step;
             m.iteration = solve.iteration;
             m.values = report.faceForces;
-            m.integers = {report.simpleIterations};
+            m.integers = {report.simpleIterations, report.converged ? 1 : 0};
             m.scalars = report.residuals;
             channel_->send(m);
         });
