@@ -134,7 +134,9 @@ int main(int argc, char** argv)
                 const Message f = channel->receive(MessageKind::Forces);
                 require(f.timeStep == s && f.iteration == k, "Forces step/iteration");
                 require(f.valueCount == 3 * nFaces, "Forces size");
-                require(f.integers.size() == 1 && f.scalars.size() == 2, "Forces payload");
+                require(f.integers.size() == 2 && (f.integers[1] == 0 || f.integers[1] == 1) &&
+                            f.scalars.size() == 2,
+                        "Forces payload {iterations, converged 0/1}, {residual U, p}");
                 if (root)
                 {
                     double F[3] = {0, 0, 0};
