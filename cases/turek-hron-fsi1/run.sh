@@ -63,7 +63,9 @@ case "$material" in
   *) echo "error: run.sh: --material must be elastic, viscoelastic or instantaneous" >&2; exit 2 ;;
 esac
 case "$accelerator" in ""|aitken|constant|iqn-ils) ;; *) echo "error: run.sh: --accelerator must be aitken, constant or iqn-ils" >&2; exit 2 ;; esac
-[ -f "$config" ] && [ -f fluid/blockMesh.py ] || { echo "error: run.sh: run me inside a copy of cases/turek-hron-fsi1 ($config or fluid/blockMesh.py missing)" >&2; exit 2; }
+# The channel generator is CFD1's (two wall patches: cylinder rigid, beam the interface).
+generator=${FSI_ROOT:?run through ./scripts/run cases/turek-hron-fsi1 (FSI_ROOT unset)}/cases/turek-hron-cfd1/blockMesh.py
+[ -f "$config" ] && [ -f "$generator" ] || { echo "error: run.sh: run me inside a copy of cases/turek-hron-fsi1 ($config or $generator missing)" >&2; exit 2; }
 for p in fluid-app solid-app blockMesh gmsh mpirun; do
   command -v $p >/dev/null || { echo "error: run.sh: $p not on PATH (scripts/run puts build/bin first)" >&2; exit 2; }
 done
@@ -77,7 +79,7 @@ py=${FSI_PYTHON:-/usr/bin/python3}
 echo "[fsi1] preset $preset: fluid $flevel, beam Hex20 ${nx} x ${ny} x 1; $material, launch $launch"
 rm -rf fluid/0 fluid/processor* fluid/postProcessing results
 cp -r fluid/0.orig fluid/0
-"$py" fluid/blockMesh.py "$flevel" fluid/system/blockMeshDict
+"$py" "$generator" "$flevel" fluid/system/blockMeshDict
 (cd fluid && blockMesh > log.blockMesh 2>&1) || { echo "error: blockMesh failed, see fluid/log.blockMesh" >&2; exit 1; }
 fluid_cells=$(awk '/nCells:/ {print $2; exit}' fluid/log.blockMesh)
 parallel=()
@@ -149,4 +151,4 @@ fi
 mkdir -p results
 echo "$wall" > results/wall_s
 cp fluid/postProcessing/fsi/coupling.csv results/fluid-coupling.csv 2>/dev/null || true
-"$py" tools/summary.py . --depth "$("$py" -c 'import sys; sys.path.insert(0, "fluid"); import blockMesh; print(blockMesh.DEPTH)')" --wall "$wall"
+"$py" tools/summary.py . --depth "$("$py" -c 'import sys; sys.path.insert(0, sys.argv[1]); import blockMesh; print(blockMesh.DEPTH)' "$(dirname "$generator")")" --wall "$wall"

@@ -3,7 +3,7 @@
 // config: u_z = 0 on both z faces). The beam runs from its attachment on the cylinder
 // (x = 0.2 + sqrt(0.05^2 - 0.01^2) = 0.248990 m, where the beam's top and bottom faces meet
 // the cylinder; the clamp is the straight end there) to the tip x = 0.6 m; y 0.19 .. 0.21 m;
-// z 0 .. depth, depth = the fluid mesh's depth (fluid/blockMesh.py DEPTH = 0.01 m) so that the
+// z 0 .. depth, depth = the fluid mesh's depth (cases/turek-hron-cfd1/blockMesh.py DEPTH = 0.01 m) so that the
 // two interfaces coincide.
 //   gmsh -3 -order 2 -setnumber nx 35 -setnumber ny 2 beam.geo -o beam.msh
 // nx cells along the beam, ny (even: a node row on y = 0.2, through point A) across it;

@@ -12,7 +12,7 @@ Writes
   results/benchmark.csv  level,time,quantity,value,reference,rel_error (ux, uy [m]; drag, lift [N/m])
   results/summary.txt    the same as a table
 Drag and lift are per unit depth: the force on cylinder + beam divided by the fluid mesh's
-depth D (default 0.01 m, fluid/blockMesh.py DEPTH), as the benchmark defines them.
+depth D (default 0.01 m, DEPTH of cases/turek-hron-cfd1/blockMesh.py), as the benchmark defines them.
 """
 import csv
 import os
