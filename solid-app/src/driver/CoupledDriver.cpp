@@ -246,6 +246,15 @@ RunSummary CoupledDriver::run()
     Eigen::VectorXd iterate = uLast, solverOutput = uLast, nodalForce = uLast;
     double dtLast = 0.0;
     RunSummary summary;
+    // Mapping buffers, sized once (rank 0): the per-iteration applies then allocate nothing.
+    using NodeRows = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>;
+    mapping::Values nodalDisplacement, pointDisplacement, nodalForceRows;
+    if (m.rank == 0)
+    {
+        nodalDisplacement.resize(n / 3, 3);
+        pointDisplacement.resize(m.displacementMap->targetSize(), 3);
+        nodalForceRows.resize(n / 3, 3);
+    }
 
     while (true)
     {
@@ -271,13 +280,10 @@ RunSummary CoupledDriver::run()
         {
             double wallFluid = 0, wallMapping = 0;
             auto t0 = Clock::now();
-            mapping::Values pointDisplacement;
             if (m.rank == 0)
             {
-                mapping::Values nodal = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(
-                    iterate.data(), n / 3, 3);
-                pointDisplacement.resize(m.displacementMap->targetSize(), 3);
-                m.displacementMap->applyConsistent(nodal, pointDisplacement);
+                nodalDisplacement = NodeRows(iterate.data(), n / 3, 3);
+                m.displacementMap->applyConsistent(nodalDisplacement, pointDisplacement);
                 wallMapping += secondsSince(t0);
             }
             t0 = Clock::now();
@@ -286,11 +292,10 @@ RunSummary CoupledDriver::run()
             if (m.rank == 0)
             {
                 t0 = Clock::now();
-                mapping::Values forces(n / 3, 3);
-                m.forceMap->applyConservative(response.faceForces, forces);
+                m.forceMap->applyConservative(response.faceForces, nodalForceRows);
                 for (int i = 0; i < n / 3; ++i)
                     for (int k = 0; k < 3; ++k)
-                        nodalForce[3 * i + k] = forces(i, k);
+                        nodalForce[3 * i + k] = nodalForceRows(i, k);
                 record.force = response.faceForces.colwise().sum().transpose();
                 wallMapping += secondsSince(t0);
                 record.fluidIterations += response.iterations;
