@@ -22,6 +22,21 @@ void onlySelectedCoefficients(const config::Block& b, const std::string& type,
                           "': remove the block or change type");
 }
 
+// Runs the strategy's own validate(); its message is re-thrown as a one-line error naming the
+// config file and `key` of block b.
+template <class Parameters>
+void validateIn(const Parameters& p, const config::Block& b, const std::string& key)
+{
+    try
+    {
+        p.validate();
+    }
+    catch (const std::exception& e)
+    {
+        b.fail(key, e.what());
+    }
+}
+
 acceleration::AcceleratorParameters parseAcceleration(const config::Block& b)
 {
     const std::vector<std::string> types{"constant", "aitken", "iqn-ils"};
@@ -55,14 +70,7 @@ acceleration::AcceleratorParameters parseAcceleration(const config::Block& b)
         p.iqnIls.filter = c.choice("filter", {"qr-column", "qr-matrix"}, p.iqnIls.filter);
         p.iqnIls.filterTolerance = c.number("filter_tolerance", p.iqnIls.filterTolerance);
     }
-    try
-    {
-        p.validate();
-    }
-    catch (const std::exception& e)
-    {
-        b.fail("type", e.what());
-    }
+    validateIn(p, b, "type");
     return p;
 }
 
@@ -89,14 +97,7 @@ mapping::MappingParameters parseMapping(const config::Block& b)
         c.allowOnly({"max_source_points"});
         p.thinPlate.maxSourcePoints = c.integer("max_source_points");
     }
-    try
-    {
-        p.validate();
-    }
-    catch (const std::exception& e)
-    {
-        b.fail("type", e.what());
-    }
+    validateIn(p, b, "type");
     return p;
 }
 
@@ -176,14 +177,7 @@ CouplingParameters CouplingParameters::parse(const config::Block& b)
     c.allowOnly({"absolute_tolerance", "relative_tolerance"});
     p.convergence.absoluteTolerance = c.number("absolute_tolerance", 0.0);
     p.convergence.relativeTolerance = c.number("relative_tolerance", 0.0);
-    try
-    {
-        p.convergence.validate();
-    }
-    catch (const std::exception& e)
-    {
-        c.fail("absolute_tolerance", e.what());
-    }
+    validateIn(p.convergence, c, "absolute_tolerance");
     p.acceleration = parseAcceleration(b.block("acceleration"));
     p.mapping = parseMapping(b.block("mapping"));
     if (auto t = b.optionalBlock("time"))
