@@ -14,7 +14,6 @@ Conventions (cases/hydrofoil/README.md): x flow, y across the tunnel, lift = -F_
 import argparse
 import csv
 import glob
-import math
 import os
 import sys
 
@@ -75,6 +74,15 @@ def interpolate(times, values, t):
             w = (t - times[i - 1]) / (times[i] - times[i - 1]) if times[i] > times[i - 1] else 0.0
             return values[i - 1] + w * (values[i] - values[i - 1])
     return values[-1]
+
+
+def save(fig, ax, xlabel, ylabel, path, legend_size=8):
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=legend_size)
+    fig.tight_layout()
+    fig.savefig(path, dpi=130)
 
 
 def main():
@@ -143,13 +151,8 @@ def main():
         ax.plot(t, vals, "o-", ms=3, color=col, label=f"{name} viscoelastic")
         if base:
             ax.axhline(float(base[name]), color=col, ls="--", label=f"{name} baseline")
-    ax.set_xlabel("t [s]")
-    ax.set_ylabel("force on the foil [N]")
     ax.set_title("Net foil forces (paper Fig. 6; lift = -Fy)")
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(res, "forces.png"), dpi=130)
+    save(fig, ax, "t [s]", "force on the foil [N]", os.path.join(res, "forces.png"), 7)
 
     if aoa:
         fig, ax = plt.subplots(figsize=(6.4, 4.0))
@@ -158,12 +161,7 @@ def main():
             ax.axhline(float(base[aoa_key]), color="k", ls="--", label="baseline")
         ax.axhline(-8.1, color="C3", ls=":", label="paper: -8.1 deg at 360 s")
         ax.axvline(360.0, color="C3", ls=":")
-        ax.set_xlabel("t [s]")
-        ax.set_ylabel("tip AOA [deg]")
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=8)
-        fig.tight_layout()
-        fig.savefig(os.path.join(res, "tip_aoa.png"), dpi=130)
+        save(fig, ax, "t [s]", "tip AOA [deg]", os.path.join(res, "tip_aoa.png"))
 
     # Summary against the paper's landmarks.
     rows = [("quantity", "value", "paper")]
