@@ -9,7 +9,7 @@
 set -euo pipefail
 : "${FSI_VERIFY_DIR:?run through scripts/verify cantilever}"
 root=${FSI_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}
-app=${SOLID_APP:-${FSI_BUILD_DIR:-$root/build}/bin/solid-app}
+source "$(dirname "$0")/solid-common"
 case_dir=$root/cases/solid/cantilever
 levels=${CANTILEVER_LEVELS:-"tet:1:1 tet:2:1 tet:3:1 tet:4:1 hex:2:1 hex:3:1 hex:4:1 tet:4:2"}
 ref=$(awk 'BEGIN { P = 1000; L = 2; E = 2e9; G = E / 2; b = 0.1; h = 0.1; I = b * h^3 / 12;
@@ -24,15 +24,7 @@ for spec in $levels; do
   gmsh -3 -order 2 -setnumber n "$n" -setnumber hex "$hex" "$case_dir/beam.geo" -o "$run/beam.msh" \
        > "$run/log.gmsh" 2>&1
   cp "$case_dir/cantilever.yaml" "$run/"
-  start=$(date +%s.%N)
-  if [ "$cores" -gt 1 ]; then
-    ${FSI_MPIEXEC:-mpirun} --oversubscribe --allow-run-as-root -np "$cores" \
-      "$app" "$run/cantilever.yaml" --out "$run/output" > "$run/log.solid-app" 2>&1
-  else
-    "$app" "$run/cantilever.yaml" --out "$run/output" > "$run/log.solid-app" 2>&1
-  fi
-  wall=$(echo "$(date +%s.%N) - $start" | bc)
-  dofs=$(grep -m1 "free dofs" "$run/log.solid-app" | sed 's/.*, \([0-9]*\) free dofs.*/\1/')
+  run_solid "$run/cantilever.yaml" "$run/output" "$run/log.solid-app" "$cores"
   echo "cantilever: $kind n=$n on $cores core(s): $dofs dofs, $wall s"
   name=Tet10; [ "$hex" = 1 ] && name=Hex20
   tail -1 "$run/output/history.csv" | awk -F, -v l="$kind-n$n" -v s="$dofs" -v c="$cores" -v w="$wall" \

@@ -12,7 +12,7 @@
 set -euo pipefail
 : "${FSI_VERIFY_DIR:?run through scripts/verify cook}"
 root=${FSI_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}
-app=${SOLID_APP:-${FSI_BUILD_DIR:-$root/build}/bin/solid-app}
+source "$(dirname "$0")/solid-common"
 case_dir=$root/cases/solid/cook
 levels=${COOK_LEVELS:-"hex:2 hex:4 hex:8 hex:16 hex:32 tet:4 tet:8 tet:16 tet:32"}
 csv=$FSI_VERIFY_DIR/error_vs_runtime.csv
@@ -28,10 +28,7 @@ for spec in $levels; do
        > "$run/log.gmsh" 2>&1
   for variant in cook cook-incompressible; do
     cp "$case_dir/$variant.yaml" "$run/"
-    start=$(date +%s.%N)
-    "$app" "$run/$variant.yaml" --out "$run/out-$variant" > "$run/log.$variant" 2>&1
-    wall=$(echo "$(date +%s.%N) - $start" | bc)
-    dofs=$(grep -m1 "free dofs" "$run/log.$variant" | sed 's/.*, \([0-9]*\) free dofs.*/\1/')
+    run_solid "$run/$variant.yaml" "$run/out-$variant" "$run/log.$variant"
     q=uy_C_$name; [ "$variant" = cook-incompressible ] && q=uy_C_${name}_nu04999
     tail -1 "$run/out-$variant/history.csv" | awk -F, -v l="$kind-n$n" -v s="$dofs" -v w="$wall" -v q="$q" \
       '{ printf "%s,%s,1,%.3f,%s,%.9e\n", l, s, w, q, $3 }' >> "$raw"

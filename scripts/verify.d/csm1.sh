@@ -8,7 +8,7 @@
 set -euo pipefail
 : "${FSI_VERIFY_DIR:?run through scripts/verify csm1}"
 root=${FSI_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}
-app=${SOLID_APP:-${FSI_BUILD_DIR:-$root/build}/bin/solid-app}
+source "$(dirname "$0")/solid-common"
 case_dir=$root/cases/solid/csm1
 levels=${CSM1_LEVELS:-"1:1 2:1 4:1 8:1 8:2"}
 csv=$FSI_VERIFY_DIR/error_vs_runtime.csv
@@ -20,15 +20,7 @@ for lc in $levels; do
   gmsh -3 -order 2 -setnumber n "$n" -setnumber arc "${CSM1_ARC:-1}" "$case_dir/csm1.geo" \
        -o "$run/csm1.msh" > "$run/log.gmsh" 2>&1
   cp "$case_dir/csm1.yaml" "$run/"
-  start=$(date +%s.%N)
-  if [ "$cores" -gt 1 ]; then
-    ${FSI_MPIEXEC:-mpirun} --oversubscribe --allow-run-as-root -np "$cores" \
-      "$app" "$run/csm1.yaml" --out "$run/output" > "$run/log.solid-app" 2>&1
-  else
-    "$app" "$run/csm1.yaml" --out "$run/output" > "$run/log.solid-app" 2>&1
-  fi
-  wall=$(echo "$(date +%s.%N) - $start" | bc)
-  dofs=$(grep -m1 "free dofs" "$run/log.solid-app" | sed 's/.*, \([0-9]*\) free dofs.*/\1/')
+  run_solid "$run/csm1.yaml" "$run/output" "$run/log.solid-app" "$cores"
   echo "csm1: n=$n on $cores core(s): $dofs dofs, $wall s ($run)"
   tail -1 "$run/output/history.csv" | awk -F, -v l="n$n" -v s="$dofs" -v c="$cores" -v w="$wall" '{
     ux = $2; uy = $3; rx = -7.187e-3; ry = -6.610e-2;

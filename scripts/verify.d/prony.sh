@@ -7,7 +7,7 @@
 set -euo pipefail
 : "${FSI_VERIFY_DIR:?run through scripts/verify prony}"
 root=${FSI_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}
-app=${SOLID_APP:-${FSI_BUILD_DIR:-$root/build}/bin/solid-app}
+source "$(dirname "$0")/solid-common"
 case_dir=$root/cases/solid/prony
 csv=$FSI_VERIFY_DIR/error_vs_runtime.csv
 echo "level,size,cores,wall_s,quantity,value,reference,rel_error" > "$csv"
@@ -17,9 +17,7 @@ for dt in ${PRONY_DTS:-0.1 0.05 0.02 0.01}; do
   mkdir -p "$run"
   cp "$FSI_VERIFY_DIR/cube.msh" "$run/"
   sed "s/^    dt: .*/    dt: $dt/; s/^    vtu: true/    vtu: false/" "$case_dir/creep.yaml" > "$run/creep.yaml"
-  start=$(date +%s.%N)
-  "$app" "$run/creep.yaml" --out "$run/output" > "$run/log.solid-app" 2>&1
-  wall=$(echo "$(date +%s.%N) - $start" | bc)
+  run_solid "$run/creep.yaml" "$run/output" "$run/log.solid-app"
   levels=$(($(wc -l < "$run/output/history.csv") - 1))
   echo "prony: dt=$dt: $levels levels, $wall s"
   awk -F, -v l="dt$dt" -v s="$levels" -v w="$wall" 'NR > 1 {
