@@ -6,6 +6,7 @@
 #include "linalg/CsrPattern.hpp"
 #include "linalg/Partition.hpp"
 #include "linalg/SparseDirectSolver.hpp"
+#include "CubeMesh.hpp"
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
@@ -29,7 +30,7 @@ struct TetMesh
 TetMesh cubeTets(int m)
 {
     const int nodesPerSide = m + 1;
-    auto node = [&](int i, int j, int k) { return i + nodesPerSide * (j + nodesPerSide * k); };
+    auto node = [m](int i, int j, int k) { return fsi::testing::cubeNode(m, i, j, k); };
     TetMesh mesh;
     mesh.x.resize(nodesPerSide * nodesPerSide * nodesPerSide);
     mesh.boundary.resize(mesh.x.size());
@@ -43,22 +44,7 @@ TetMesh cubeTets(int m)
                     Eigen::Vector3d(i, j, k) / m + Eigen::Vector3d::Constant(shift);
                 mesh.boundary[node(i, j, k)] = b;
             }
-    for (int k = 0; k < m; ++k)
-        for (int j = 0; j < m; ++j)
-            for (int i = 0; i < m; ++i)
-            {
-                const int v[8] = {node(i, j, k),
-                                  node(i + 1, j, k),
-                                  node(i + 1, j + 1, k),
-                                  node(i, j + 1, k),
-                                  node(i, j, k + 1),
-                                  node(i + 1, j, k + 1),
-                                  node(i + 1, j + 1, k + 1),
-                                  node(i, j + 1, k + 1)};
-                const int paths[6][2] = {{1, 2}, {1, 5}, {3, 2}, {3, 7}, {4, 5}, {4, 7}};
-                for (const auto& p : paths)
-                    mesh.tets.push_back({v[0], v[p[0]], v[p[1]], v[6]});
-            }
+    mesh.tets = fsi::testing::cubeElements(m, true);
     return mesh;
 }
 

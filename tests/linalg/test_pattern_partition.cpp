@@ -2,6 +2,7 @@
 // CsrPattern from element dofs; METIS element partition of structured tet and hex meshes.
 #include "linalg/CsrPattern.hpp"
 #include "linalg/Partition.hpp"
+#include "CubeMesh.hpp"
 
 #include <gtest/gtest.h>
 
@@ -12,35 +13,7 @@ using namespace fsi::linalg;
 
 namespace
 {
-// m^3 cubes; hexes (8 nodes) or each cube split into 6 tets (4 nodes).
-std::vector<std::vector<int>> cubeMesh(int m, bool tets)
-{
-    auto node = [m](int i, int j, int k) { return i + (m + 1) * (j + (m + 1) * k); };
-    std::vector<std::vector<int>> elements;
-    for (int k = 0; k < m; ++k)
-        for (int j = 0; j < m; ++j)
-            for (int i = 0; i < m; ++i)
-            {
-                const int v[8] = {node(i, j, k),
-                                  node(i + 1, j, k),
-                                  node(i + 1, j + 1, k),
-                                  node(i, j + 1, k),
-                                  node(i, j, k + 1),
-                                  node(i + 1, j, k + 1),
-                                  node(i + 1, j + 1, k + 1),
-                                  node(i, j + 1, k + 1)};
-                if (!tets)
-                {
-                    elements.push_back({v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7]});
-                    continue;
-                }
-                // Kuhn split along the 0-6 diagonal
-                const int paths[6][2] = {{1, 2}, {1, 5}, {3, 2}, {3, 7}, {4, 5}, {4, 7}};
-                for (const auto& p : paths)
-                    elements.push_back({v[0], v[p[0]], v[p[1]], v[6]});
-            }
-    return elements;
-}
+using fsi::testing::cubeElements;
 } // namespace
 
 TEST(CsrPattern, TwoElementsSharingDofs)
@@ -73,7 +46,7 @@ class PartitionMesh : public ::testing::TestWithParam<std::tuple<bool, int>>
 TEST_P(PartitionMesh, CoversEveryElementOnceAndIsBalanced)
 {
     const auto [tets, parts] = GetParam();
-    const auto elements = cubeMesh(10, tets);
+    const auto elements = cubeElements(10, tets);
     const int ne = static_cast<int>(elements.size());
     const std::vector<int> part = partitionElements(elements, parts, tets ? 3 : 4);
     ASSERT_EQ(static_cast<int>(part.size()), ne); // one part id per element: exactly once
