@@ -5,15 +5,20 @@
 #   ./scripts/run cases/hydrofoil [--preset coarse|medium|fine] [options]
 #
 # Options (after the case):
-#   --material viscoelastic|baseline|both   which runs (default both: the paper's comparison)
+#   --material viscoelastic|baseline|relaxed|both|elastic
+#                                           which runs (default both: the paper's comparison).
+#                                           baseline = elastic, instantaneous modulus (t = 0);
+#                                           relaxed = elastic, long-term modulus (t -> infinity);
+#                                           both = baseline + viscoelastic; elastic = baseline +
+#                                           relaxed (the two steady bounds, no time stepping)
 #   --np-fluid N --np-solid M               ranks of each program (default 2 and 1)
 #   --launch mpmd|port                      one mpirun A : B (default) or two + ompi-server
 #   --tc T --cli C                          section thickness ratio and design lift (0.12, 0.5)
 #   --end SECONDS                           last time level of the viscoelastic run (3600)
 #   --timeout SECONDS                       longest wait for the peer (default 900)
 #   --mesh-from DIR                         reuse the meshes of an earlier run folder (DIR/mesh)
-# Writes results/: history.csv (viscoelastic, one row per level), baseline/ and visco/ (solid-app
-# outputs: coupling.csv, history.csv, interface/, solid_*.vtu + solid.pvd), summary.csv and the
+# Writes results/: history.csv (viscoelastic, one row per level), baseline/, relaxed/ and visco/
+# (solid-app outputs: coupling.csv, history.csv, interface/, solid_*.vtu + solid.pvd), summary.csv and the
 # PNG plots; the fluid fields of accepted levels are in fluid-*/ (OpenFOAM time folders).
 set -euo pipefail
 : "${FSI_ROOT:?run through ./scripts/run cases/hydrofoil (FSI_ROOT unset)}"
@@ -33,11 +38,11 @@ while [ $# -gt 0 ]; do
     --end) end=$2; shift 2 ;;
     --timeout) timeout=$2; shift 2 ;;
     --mesh-from) meshFrom=$2; shift 2 ;;
-    -h|--help) sed -n '3,18p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '3,22p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) die "unknown option '$1' (see --help)" ;;
   esac
 done
-case "$material" in viscoelastic|baseline|both) ;; *) die "--material must be viscoelastic, baseline or both" ;; esac
+case "$material" in viscoelastic|baseline|relaxed|both|elastic) ;; *) die "--material must be viscoelastic, baseline, relaxed, both or elastic" ;; esac
 case "$launch" in mpmd|port) ;; *) die "--launch must be mpmd or port" ;; esac
 [[ "$npf" =~ ^[1-9][0-9]*$ && "$nps" =~ ^[1-9][0-9]*$ ]] || die "--np-fluid/--np-solid must be positive integers"
 command -v fluid-app >/dev/null && command -v solid-app >/dev/null || die "fluid-app/solid-app not on PATH (build first)"
@@ -60,7 +65,11 @@ solidMesh=$run/mesh/solid/foil-tet10.msh
 [ -f "$solidMesh" ] || die "no structural mesh $solidMesh"
 
 runs=()
-case "$material" in both) runs=(baseline viscoelastic) ;; *) runs=("$material") ;; esac
+case "$material" in
+  both) runs=(baseline viscoelastic) ;;
+  elastic) runs=(baseline relaxed) ;;
+  *) runs=("$material") ;;
+esac
 mkdir -p "$run/results"
 
 for m in "${runs[@]}"; do
@@ -103,6 +112,8 @@ if [ -d "$run/results/visco" ]; then
   cp "$run/results/visco/history.csv" "$run/results/history.csv"
 elif [ -d "$run/results/baseline" ]; then
   cp "$run/results/baseline/history.csv" "$run/results/history.csv"
+elif [ -d "$run/results/relaxed" ]; then
+  cp "$run/results/relaxed/history.csv" "$run/results/history.csv"
 fi
 log "plots and summary"
 "$FSI_PYTHON" "$FSI_ROOT/scripts/plot_hydrofoil.py" "$run/results"
