@@ -26,7 +26,7 @@ namespace fs = std::filesystem;
 RunOptions parseArguments(int argc, char** argv)
 {
     RunOptions o;
-    const std::string usage = "usage: solid-app CONFIG.yaml [--out DIR]";
+    const std::string usage = "usage: solid-app CONFIG.yaml [--out DIR] [--restart]";
     for (int i = 1; i < argc; ++i)
     {
         const std::string a = argv[i];
@@ -36,6 +36,8 @@ RunOptions parseArguments(int argc, char** argv)
                 throw std::runtime_error("--out needs a folder; " + usage);
             o.outputFolder = argv[++i];
         }
+        else if (a == "--restart")
+            o.restart = true;
         else if (a == "-h" || a == "--help")
             throw std::runtime_error(usage);
         else if (!a.empty() && a[0] == '-')

@@ -19,9 +19,10 @@ struct RunOptions
 {
     std::string configFile;
     std::string outputFolder; // "" = solid.output.folder of the config
+    bool restart = false;     // coupled mode: continue from OUT/checkpoint/latest
 };
 
-// Parses "CONFIG.yaml [--out DIR]"; throws std::runtime_error with a usage line.
+// Parses "CONFIG.yaml [--out DIR] [--restart]"; throws std::runtime_error with a usage line.
 RunOptions parseArguments(int argc, char** argv);
 
 // True if the config has a top-level `coupling:` block (the driver's coupled mode).

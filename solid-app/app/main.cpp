@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// solid-app CONFIG.yaml [--out DIR] [--launch mpmd|port] [--port-file F] [--comm-timeout S]
+// solid-app CONFIG.yaml [--out DIR] [--restart] [--launch mpmd|port] [--port-file F] [--comm-timeout S]
 #include "Standalone.hpp"
 
 #include <mpi.h>
@@ -8,7 +8,7 @@
 #include <exception>
 
 #ifdef FSI_HAVE_DRIVER
-#include "driver/RunCoupled.hpp" // int fsi::driver::runCoupled(configFile, outputFolder)
+#include "driver/RunCoupled.hpp" // int fsi::driver::runCoupled(configFile, outputFolder, restart)
 #endif
 
 int main(int argc, char** argv)
@@ -25,13 +25,16 @@ int main(int argc, char** argv)
         if (fsi::app::isCoupledConfig(options.configFile))
         {
 #ifdef FSI_HAVE_DRIVER
-            code = fsi::driver::runCoupled(options.configFile, options.outputFolder);
+            code = fsi::driver::runCoupled(options.configFile, options.outputFolder, options.restart);
 #else
             throw std::runtime_error(options.configFile +
                                      ": has a 'coupling' block but this solid-app "
                                      "was built without the coupling driver");
 #endif
         }
+        else if (options.restart)
+            throw std::runtime_error(options.configFile + ": --restart applies to coupled runs (a config "
+                                                          "with a 'coupling' block) only");
         else
             code = fsi::app::runStandalone(options);
     }

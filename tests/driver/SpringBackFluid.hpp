@@ -9,6 +9,7 @@
 
 #include "driver/FluidPeer.hpp"
 
+#include <cmath>
 #include <stdexcept>
 #include <vector>
 
@@ -41,6 +42,9 @@ public:
         const Eigen::Index n = interface_.faceCentres.rows();
         r.faceForces = mapping::Values::Zero(n, 3);
         r.faceForces.col(1).setConstant(totalForce_ / n * (1.0 - kappa_ * meanUy));
+        const double lastTime = accepted.empty() ? 0.0 : accepted.back();
+        if (unstableStep > 0 && time - lastTime > unstableStep)
+            r.faceForces.setConstant(std::nan(""));
         r.iterations = 1;
         r.converged = true;
         return r;
@@ -49,6 +53,7 @@ public:
     void finish() override { finished = true; }
     void abort(const std::string& reason) noexcept override { abortReason = reason; }
 
+    double unstableStep = 0; // > 0: NaN forces when time - last accepted time exceeds it
     int solves = 0;
     std::vector<double> accepted;
     bool finished = false;

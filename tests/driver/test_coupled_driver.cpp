@@ -12,7 +12,9 @@
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include <cmath>
 #include <filesystem>
+#include <fstream>
 
 using namespace fsi;
 
@@ -99,25 +101,55 @@ struct CoupledResult
     double meanUy = 0;
 };
 
+// One output folder for all ranks of `comm` (rank 0's pid): checkpoints are written by every rank.
+std::string sharedFolder(MPI_Comm comm, const std::string& stem)
+{
+    long pid = ::getpid();
+    MPI_Bcast(&pid, 1, MPI_LONG, 0, comm);
+    return "/tmp/fsi-driver-" + stem + "-" + std::to_string(pid);
+}
+
+struct RunOptions
+{
+    MPI_Comm comm = MPI_COMM_WORLD;
+    std::string out;       // "" = a fresh folder, removed afterwards
+    bool restart = false;
+    double unstableStep = 0; // > 0: the fluid double returns NaN forces for larger steps
+};
+
 CoupledResult runCoupled(const material::MaterialParameters& params, driver::CouplingParameters coupling,
-                         double totalForce, double kappa)
+                         double totalForce, double kappa, const RunOptions& options = {})
 {
     auto law = material::makeMaterial(params, material::Kinematics::SmallStrain);
-    fe::StructuralSolver solid(MPI_COMM_WORLD, beamMesh(), *law, cantilever());
+    fe::StructuralSolver solid(options.comm, beamMesh(), *law, cantilever());
     // Every rank holds the double (the peer is called collectively); only rank 0's data matter.
     auto fluid = std::make_unique<fsi::testing::SpringBackFluid>(solid.wettedNodeCoordinates(), totalForce, kappa);
-    const std::string out = "/tmp/fsi-driver-test-" + std::to_string(::getpid());
-    driver::CoupledDriver driver(MPI_COMM_WORLD, solid, fluid.get(), coupling, out,
+    fluid->unstableStep = options.unstableStep;
+    const std::string out = options.out.empty() ? sharedFolder(options.comm, "test") : options.out;
+    driver::CoupledDriver driver(options.comm, solid, fluid.get(), coupling, out,
                                  params.relaxationTimes());
     driver.setVerbose(false);
+    driver.setRestart(options.restart);
     CoupledResult r;
-    r.summary = driver.run();
+    try
+    {
+        r.summary = driver.run();
+    }
+    catch (...)
+    {
+        MPI_Barrier(options.comm);
+        if (options.out.empty() && worldRank() == 0)
+            std::filesystem::remove_all(out);
+        throw;
+    }
     const auto u = solid.wettedNodeDisplacements();
     for (std::size_t i = 0; i < u.size() / 3; ++i)
         r.meanUy += u[3 * i + 1];
     r.meanUy /= static_cast<double>(u.size() / 3);
     EXPECT_TRUE(fluid->finished);
-    std::filesystem::remove_all(out);
+    MPI_Barrier(options.comm);
+    if (options.out.empty() && worldRank() == 0)
+        std::filesystem::remove_all(out);
     return r;
 }
 
@@ -141,7 +173,9 @@ TEST(CoupledDriver, AitkenConvergesWherePlainIterationDiverges)
 
     try
     {
-        runCoupled(params, couplingWith("constant", 1.0), F0, kappa);
+        auto plain = couplingWith("constant", 1.0);
+        plain.recovery.maxRetries = 0; // no automatic cure
+        runCoupled(params, plain, F0, kappa);
         FAIL() << "omega = 1 must diverge on this problem";
     }
     catch (const std::runtime_error& e)
@@ -198,4 +232,151 @@ TEST(CoupledDriver, ViscoelasticLevelsSpanInstantaneousAndLongTermResponses)
     instantOnly.time.times = {0.0};
     const auto r0 = runCoupled(visco, instantOnly, F0, kappa);
     EXPECT_NEAR(r0.meanUy, U1inst / (1 + kappa * U1inst), 1e-7 * U1inst);
+}
+
+// The relaxation cure: omega = 1 diverges (contraction factor -1.5); the driver redoes the level
+// with omega x 0.5 (contraction -0.25), says so, and reaches the closed-form fixed point.
+TEST(CoupledDriver, DivergingLevelIsRedoneWithStrongerRelaxation)
+{
+    const auto params = elastic(K, G);
+    const double U1 = meanTipResponse(params, F0);
+    const double kappa = 1.5 / U1;
+    auto coupling = couplingWith("constant", 1.0);
+    coupling.divergenceFactor = 10;
+    const auto r = runCoupled(params, coupling, F0, kappa);
+    ASSERT_EQ(r.summary.history.size(), 1u);
+    EXPECT_EQ(r.summary.history[0].retries, 1);
+    // The retry warm-starts the solid from the diverged iterate: Newton's relative tolerance
+    // (1e-8 of the force) then bounds the agreement.
+    EXPECT_NEAR(r.meanUy, U1 / (1 + kappa * U1), 1e-7 * U1);
+}
+
+// The time-step cure: the fluid double returns NaN forces for steps longer than 0.5 s, so the
+// structural Newton fails on the planned steps of 1 s; the driver cuts the step (x0.25) and
+// still lands on every planned time, ending in the same state as a run with small steps.
+TEST(CoupledDriver, FailedStructuralSolveIsRedoneWithSmallerTimeStep)
+{
+    material::MaterialParameters visco;
+    visco.type = "viscoelastic";
+    visco.bulkModulus = K;
+    visco.shearModulus = G;
+    visco.modulusBasis = "long-term";
+    visco.pronyConvention = "long-term-gamma";
+    visco.pronyCoefficients = {0.6};
+    visco.pronyTimes = {1.0};
+    visco.validate();
+    const double kappa = 0.5 / meanTipResponse(elastic(K, G), F0);
+    auto coupling = couplingWith("aitken", 0.5);
+    coupling.time.type = "list";
+    coupling.time.times = {0.0, 1.0, 2.0};
+    RunOptions unstable;
+    unstable.unstableStep = 0.5;
+    const auto cured = runCoupled(visco, coupling, F0, kappa, unstable);
+    const auto& h = cured.summary.history;
+    ASSERT_GT(h.size(), 3u);
+    EXPECT_DOUBLE_EQ(h.back().time, 2.0);
+    int retries = 0;
+    for (const auto& rec : h)
+    {
+        EXPECT_LE(rec.dt, 0.5 + 1e-12);
+        retries += rec.retries;
+    }
+    EXPECT_GE(retries, 2);
+    // Reference: the same times without failures (the schedule the cure produced).
+    auto reference = coupling;
+    reference.time.times.clear();
+    for (const auto& rec : h)
+        reference.time.times.push_back(rec.time);
+    const auto plain = runCoupled(visco, reference, F0, kappa);
+    // Equal to the coupling and Newton tolerances (the retried levels start without predictor).
+    EXPECT_NEAR(cured.meanUy, plain.meanUy, 1e-8 * std::abs(plain.meanUy));
+}
+
+// Restart: a run that stops after level 2 and is continued with --restart ends in the same state
+// as an uninterrupted run: same iterations per level (IQN-ILS reuses columns of past levels, so
+// the accelerator state must come back too) and the same displacement. On 2 ranks the restart
+// runs on 1 rank (the solid history is keyed by cell, not by rank).
+TEST(CoupledDriver, RestartReproducesTheUninterruptedRun)
+{
+    material::MaterialParameters visco;
+    visco.type = "viscoelastic";
+    visco.bulkModulus = K;
+    visco.shearModulus = G;
+    visco.modulusBasis = "long-term";
+    visco.pronyConvention = "long-term-gamma";
+    visco.pronyCoefficients = {0.6, 0.4};
+    visco.pronyTimes = {0.3, 3.0};
+    visco.validate();
+    const double kappa = 1.2 / meanTipResponse(elastic(K, G), F0);
+    auto coupling = couplingWith("iqn-ils", 0.5);
+    coupling.acceleration.iqnIls.reuseLevels = 2;
+    coupling.convergence.absoluteTolerance = 1e-11;
+    coupling.time.type = "list";
+    coupling.time.times = {0.0, 0.1, 0.4, 1.0, 3.0, 10.0};
+    const auto whole = runCoupled(visco, coupling, F0, kappa);
+
+    RunOptions first;
+    first.out = sharedFolder(MPI_COMM_WORLD, "restart");
+    auto shortened = coupling;
+    shortened.time.times = {0.0, 0.1, 0.4};
+    runCoupled(visco, shortened, F0, kappa, first);
+
+    RunOptions second = first;
+    second.restart = true;
+    int size = 1;
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    MPI_Comm restartComm = MPI_COMM_WORLD;
+    if (size > 1)
+        MPI_Comm_split(MPI_COMM_WORLD, worldRank() == 0 ? 0 : MPI_UNDEFINED, 0, &restartComm);
+    if (restartComm != MPI_COMM_NULL)
+    {
+        second.comm = restartComm;
+        const auto continued = runCoupled(visco, coupling, F0, kappa, second);
+        ASSERT_EQ(continued.summary.history.size(), 3u);
+        EXPECT_EQ(continued.summary.levels, 6);
+        for (int k = 0; k < 3; ++k)
+        {
+            const auto& a = whole.summary.history[3 + k];
+            const auto& b = continued.summary.history[k];
+            EXPECT_EQ(a.level, b.level);
+            EXPECT_DOUBLE_EQ(a.time, b.time);
+            EXPECT_EQ(a.couplingIterations, b.couplingIterations) << "level " << a.level;
+            EXPECT_NEAR(a.force.y(), b.force.y(), 1e-9 * std::abs(a.force.y()));
+        }
+        EXPECT_NEAR(continued.meanUy, whole.meanUy, 1e-9 * std::abs(whole.meanUy));
+        // The history keeps the rows of the first run: 6 levels, each once.
+        std::ifstream history(first.out + "/history.csv");
+        int rows = 0;
+        std::string line;
+        while (std::getline(history, line))
+            ++rows;
+        EXPECT_EQ(rows, 1 + 6);
+        if (restartComm != MPI_COMM_WORLD)
+            MPI_Comm_free(&restartComm);
+    }
+    MPI_Barrier(MPI_COMM_WORLD);
+    if (worldRank() == 0)
+        std::filesystem::remove_all(first.out);
+}
+
+// A restart without a checkpoint ends with a one-line error naming the file.
+TEST(CoupledDriver, RestartWithoutCheckpointFailsClearly)
+{
+    RunOptions options;
+    options.out = sharedFolder(MPI_COMM_WORLD, "nocheckpoint");
+    options.restart = true;
+    try
+    {
+        runCoupled(elastic(K, G), couplingWith("aitken", 0.5), F0, 1.0, options);
+        FAIL() << "restart without a checkpoint must fail";
+    }
+    catch (const std::runtime_error& e)
+    {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("checkpoint/latest"), std::string::npos) << what;
+        EXPECT_NE(what.find("without --restart"), std::string::npos) << what;
+    }
+    MPI_Barrier(MPI_COMM_WORLD);
+    if (worldRank() == 0)
+        std::filesystem::remove_all(options.out);
 }

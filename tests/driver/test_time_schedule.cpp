@@ -97,3 +97,31 @@ TEST(TimeSchedule, InvalidParametersNameTheKey)
     p.end = 10;
     EXPECT_THROW(TimeSchedule(p, {}), std::runtime_error); // elastic: first_step required
 }
+
+// Restart: resuming after level 2 of a list gives the remaining planned times.
+TEST(TimeSchedule, ResumeContinuesWithThePlannedTimes)
+{
+    TimeScheduleParameters p;
+    p.type = "list";
+    p.times = {0, 1, 2, 5, 10};
+    TimeSchedule s(p, {});
+    s.resume(2, 2.0, 1.0);
+    EXPECT_EQ(s.level(), 2);
+    EXPECT_EQ(allTimes(s), (std::vector<double>{2, 5, 10}));
+}
+
+// The time-step cure inserts a shorter level and keeps the planned time as the next one.
+TEST(TimeSchedule, CutStepInsertsAShorterLevel)
+{
+    TimeScheduleParameters p;
+    p.type = "list";
+    p.times = {0, 4, 8};
+    TimeSchedule s(p, {});
+    EXPECT_FALSE(s.cutStep(0.5)); // level 0 has no step
+    s.advance(0.0);
+    ASSERT_TRUE(s.cutStep(0.25));
+    EXPECT_DOUBLE_EQ(s.time(), 1.0);
+    EXPECT_DOUBLE_EQ(s.lastStep(), 1.0);
+    EXPECT_EQ(s.level(), 1);
+    EXPECT_EQ(allTimes(s), (std::vector<double>{1, 4, 8}));
+}

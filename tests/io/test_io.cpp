@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include "io/Archive.hpp"
 #include "io/AtomicFile.hpp"
 #include "io/CsvHistory.hpp"
 #include "io/VtuWriter.hpp"
@@ -170,4 +171,50 @@ TEST(VtuWriter, PrismsAsVtkWedges)
         EXPECT_EQ(out.rfind(type, 0), 0u) << out;
         EXPECT_NE(out.find("bad=0"), std::string::npos) << out;
     }
+}
+
+// The restart archive: exact round trip; a truncated or altered file and a missing entry are
+// refused with the file named.
+TEST(Archive, RoundTripAndDamageDetection)
+{
+    const auto file = (tempDir() / "state.bin").string();
+    io::ArchiveWriter w;
+    const std::vector<double> values{1.0, -2.5e-300, 3.0e300, 0.1};
+    w.put("values", values);
+    w.put("cells", std::vector<int>{3, 1, 2});
+    w.put("time", 360.0);
+    w.put("level", 12);
+    w.putText("type", "iqn-ils");
+    w.put("empty", std::vector<double>{});
+    w.commit(file);
+    {
+        io::ArchiveReader r(file);
+        EXPECT_EQ(r.doubles("values"), values);
+        EXPECT_EQ(r.ints("cells"), (std::vector<int>{3, 1, 2}));
+        EXPECT_EQ(r.scalar("time"), 360.0);
+        EXPECT_EQ(r.integer("level"), 12);
+        EXPECT_EQ(r.text("type"), "iqn-ils");
+        EXPECT_TRUE(r.doubles("empty").empty());
+        EXPECT_THROW(r.doubles("missing"), std::runtime_error);
+        EXPECT_THROW(r.ints("values"), std::runtime_error); // wrong kind
+    }
+    const std::string bytes = slurp(file);
+    const auto expectRefused = [&](const std::string& content, const char* what) {
+        std::ofstream(file, std::ios::binary | std::ios::trunc) << content;
+        try
+        {
+            io::ArchiveReader r(file);
+            ADD_FAILURE() << what << " was accepted";
+        }
+        catch (const std::runtime_error& e)
+        {
+            EXPECT_NE(std::string(e.what()).find(file), std::string::npos) << e.what();
+        }
+    };
+    expectRefused(bytes.substr(0, bytes.size() / 2), "a truncated archive");
+    std::string flipped = bytes;
+    flipped[bytes.size() / 2] ^= 0x10;
+    expectRefused(flipped, "a flipped byte");
+    expectRefused("", "an empty file");
+    EXPECT_THROW(io::ArchiveReader((tempDir() / "none.bin").string()), std::runtime_error);
 }

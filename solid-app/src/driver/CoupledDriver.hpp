@@ -8,9 +8,13 @@
 //     r_i = u_hat_i - u_{i-1}; converged when |r_i|/sqrt(n) < eps (and/or relative criterion)
 //     u_i = accelerator.update(u_{i-1}, u_hat_i)
 //   on convergence: commit the material history, the fluid writes its fields, outputs are written.
-// A level that hits max_iterations stops the run (unless on_max_iterations: continue, which
-// logs it loudly); NaN or a residual growing past divergence_factor stops the level with a
-// diagnosis. Collective on the solid communicator; only rank 0 talks to the fluid.
+// A level that diverges (NaN, a residual growing past divergence_factor), hits max_iterations
+// or whose structural Newton solve fails is redone with a cure (coupling.recovery: stronger
+// relaxation, a smaller time step), announced as "[cure]"; when the cures are used up the run
+// stops with the diagnosis (on_max_iterations: continue accepts a capped level instead, loudly).
+// Every `checkpoint.every` accepted levels the state is written to OUT/checkpoint (Checkpoint.hpp)
+// and setRestart(true) continues from there. Collective on the solid communicator; only rank 0
+// talks to the fluid.
 #pragma once
 
 #include "acceleration/Accelerator.hpp"
@@ -50,7 +54,8 @@ struct LevelRecord
     std::vector<Eigen::Vector3d> watched;            // displacement of each watched node [m]
     double sectionAngle = 0.0;  // [deg] (if configured)
     double relativeChange = 0.0; // |u_n - u_{n-1}| / |u_n| of the interface displacement
-    double wallSeconds = 0.0;   // since the start of the run
+    double wallSeconds = 0.0;   // since the start of the run (restarts included)
+    int retries = 0;            // automatic cures applied to this level
 };
 
 struct RunSummary
@@ -80,6 +85,11 @@ public:
     void onLevelAccepted(std::function<void(const LevelRecord&)> callback);
     // Prints one progress line per level and per coupling iteration on rank 0 (default on).
     void setVerbose(bool verbose) { verbose_ = verbose; }
+    // Continue from OUT/checkpoint/latest instead of t = 0: restores the solid, the driver and
+    // the accelerator, keeps the rows of coupling.csv/history.csv up to that level.
+    void setRestart(bool restart) { restart_ = restart; }
+    // Times of every accepted level so far, restarts included (filled by run()).
+    const std::vector<double>& acceptedTimes() const;
 
     // Runs all levels. Throws std::runtime_error (one line) when a level fails; before throwing
     // the fluid is told to abort with the same reason.
@@ -89,6 +99,7 @@ private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
     bool verbose_ = true;
+    bool restart_ = false;
 };
 
 } // namespace fsi::driver

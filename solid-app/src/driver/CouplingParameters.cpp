@@ -153,7 +153,8 @@ TimeScheduleParameters parseTime(const config::Block& b)
 CouplingParameters CouplingParameters::parse(const config::Block& b)
 {
     b.allowOnly({"launch", "max_iterations", "on_max_iterations", "divergence_factor", "predictor",
-                 "convergence", "acceleration", "mapping", "time", "section_angle"});
+                 "convergence", "acceleration", "mapping", "time", "section_angle", "checkpoint",
+                 "recovery"});
     CouplingParameters p;
     if (auto l = b.optionalBlock("launch"))
     {
@@ -198,6 +199,26 @@ CouplingParameters CouplingParameters::parse(const config::Block& b)
         for (double& x : a.liftDirection)
             x /= n;
         p.sectionAngle = a;
+    }
+    if (auto k = b.optionalBlock("checkpoint"))
+    {
+        k->allowOnly({"every", "keep"});
+        p.checkpoint.every = k->integer("every", p.checkpoint.every);
+        p.checkpoint.keep = k->integer("keep", p.checkpoint.keep);
+        validateIn(p.checkpoint, *k, p.checkpoint.every < 0 ? "every" : "keep");
+    }
+    if (auto r = b.optionalBlock("recovery"))
+    {
+        r->allowOnly({"max_retries", "relaxation_factor", "step_factor"});
+        p.recovery.maxRetries = r->integer("max_retries", p.recovery.maxRetries);
+        p.recovery.relaxationFactor = r->number("relaxation_factor", p.recovery.relaxationFactor);
+        p.recovery.stepFactor = r->number("step_factor", p.recovery.stepFactor);
+        if (p.recovery.maxRetries < 0)
+            r->fail("max_retries", "must be >= 0 (0 = no automatic cures)");
+        if (!(p.recovery.relaxationFactor > 0 && p.recovery.relaxationFactor < 1))
+            r->fail("relaxation_factor", "must be in (0, 1)");
+        if (!(p.recovery.stepFactor > 0 && p.recovery.stepFactor < 1))
+            r->fail("step_factor", "must be in (0, 1)");
     }
     return p;
 }
@@ -249,6 +270,9 @@ std::string CouplingParameters::echo() const
     s << "}\n";
     if (sectionAngle)
         s << "  section_angle: {name: " << sectionAngle->name << "}\n";
+    s << "  checkpoint: {every: " << checkpoint.every << ", keep: " << checkpoint.keep << "}\n"
+      << "  recovery: {max_retries: " << recovery.maxRetries << ", relaxation_factor: "
+      << recovery.relaxationFactor << ", step_factor: " << recovery.stepFactor << "}\n";
     return s.str();
 }
 

@@ -8,6 +8,7 @@
 
 #include "acceleration/Accelerator.hpp"
 #include "acceleration/Convergence.hpp"
+#include "driver/Checkpoint.hpp"
 #include "driver/TimeSchedule.hpp"
 #include "mapping/Mapping.hpp"
 
@@ -41,6 +42,19 @@ struct LaunchParameters
     double timeout = 600.0;             // [s] longest wait for the fluid's answer
 };
 
+// `coupling.recovery`: what the driver does, automatically and loudly, when a level fails.
+//   a coupling level diverges (residual growth, NaN) or hits max_iterations
+//       -> the level is redone with a fresh accelerator and the initial relaxation x relaxation_factor
+//   the structural Newton fails after its own load sub-stepping (level > 0)
+//       -> the level is redone with the time step x step_factor (the schedule then grows back)
+// Each level gets at most max_retries such retries; then the run stops with the diagnosis.
+struct RecoveryParameters
+{
+    int maxRetries = 3;            // per level (0 = no automatic cures)
+    double relaxationFactor = 0.5; // in (0, 1)
+    double stepFactor = 0.25;      // in (0, 1)
+};
+
 struct CouplingParameters
 {
     LaunchParameters launch;
@@ -53,6 +67,8 @@ struct CouplingParameters
     mapping::MappingParameters mapping;
     TimeScheduleParameters time;
     std::optional<SectionAngleParameters> sectionAngle;
+    CheckpointParameters checkpoint;
+    RecoveryParameters recovery;
 
     // Parses and validates the `coupling` block. Throws one-line errors (file, key, fix).
     static CouplingParameters parse(const config::Block& coupling);

@@ -49,7 +49,7 @@ void takeLaunchFlags(int& argc, char** argv)
         flagLaunch = options;
 }
 
-int runCoupled(const std::string& configFile, const std::string& outputFolder)
+int runCoupled(const std::string& configFile, const std::string& outputFolder, bool restart)
 {
     std::optional<comm::Channel> channel;
     try
@@ -92,9 +92,24 @@ int runCoupled(const std::string& configFile, const std::string& outputFolder)
             for (const auto& w : cfg.output.watch)
                 watched.push_back({w.name, mesh.nearestNode({w.point[0], w.point[1], w.point[2]})});
             CoupledDriver driver(comm, solid, &fluid, params, out, cfg.material.relaxationTimes(), watched);
+            driver.setRestart(restart);
 
             io::PvdSeries series((fs::path(out) / "solid.pvd").string());
+            bool seriesRestored = !restart;
             driver.onLevelAccepted([&](const LevelRecord& r) {
+                if (!seriesRestored && root)
+                {
+                    // Restart: the levels before this one, whose VTU files are on disk.
+                    const auto& times = driver.acceptedTimes();
+                    for (std::size_t k = 0; k + 1 < times.size(); ++k)
+                    {
+                        char name[64];
+                        std::snprintf(name, sizeof name, "solid_%05zu.vtu", k);
+                        if (fs::exists(fs::path(out) / name))
+                            series.add(times[k], name);
+                    }
+                }
+                seriesRestored = true;
                 if (!cfg.output.vtu || (r.level % cfg.output.every) != 0)
                     return;
                 std::vector<material::Vector6> nodal, cells;

@@ -8,6 +8,8 @@
 //   OUT/summary.csv           totals of the run (levels, iterations, wall time split)
 //   OUT/interface/level_*.csv wetted-node positions, displacements and forces per level
 //   OUT/solid_*.vtu + solid.pvd  structural fields per level for ParaView
+//   OUT/checkpoint/           restart files (driver/Checkpoint.hpp); restart = true continues
+//                             from OUT/checkpoint/latest (same config, same OUT)
 #pragma once
 
 #include <string>
@@ -21,6 +23,6 @@ void takeLaunchFlags(int& argc, char** argv);
 
 // Runs the coupled case; collective over this program's ranks. Returns the exit code; errors
 // end the run through fsi::comm (the fluid is told why) with a one-line message.
-int runCoupled(const std::string& configFile, const std::string& outputFolder);
+int runCoupled(const std::string& configFile, const std::string& outputFolder, bool restart = false);
 
 } // namespace fsi::driver

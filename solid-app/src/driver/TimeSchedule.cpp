@@ -153,6 +153,39 @@ double TimeSchedule::advance(double relativeChangeOfLastLevel)
     return time_;
 }
 
+void TimeSchedule::resume(int level, double time, double lastStep)
+{
+    if (level < 0 || !(time >= 0.0) || !(lastStep >= 0.0))
+        throw std::runtime_error("restart: invalid saved time level");
+    if (params_.type != "adaptive")
+    {
+        // The saved run may have cut steps: keep level+1 entries up to `time`, then the plan.
+        std::vector<double> plan;
+        for (int k = 0; k <= level; ++k)
+            plan.push_back(level == 0 ? 0.0 : time * k / level);
+        for (double t : planned_)
+            if (t > time * (1 + timeEps) + timeEps)
+                plan.push_back(t);
+        planned_ = std::move(plan);
+    }
+    level_ = level;
+    time_ = time;
+    lastStep_ = lastStep;
+}
+
+bool TimeSchedule::cutStep(double factor)
+{
+    const double step = lastStep_ * factor;
+    if (level_ == 0 || !(factor > 0.0 && factor < 1.0) || step < 1e-12)
+        return false;
+    const double previous = time_ - lastStep_;
+    if (params_.type != "adaptive")
+        planned_.insert(planned_.begin() + level_, previous + step);
+    time_ = previous + step;
+    lastStep_ = step;
+    return true;
+}
+
 std::string TimeSchedule::describe() const
 {
     std::ostringstream s;

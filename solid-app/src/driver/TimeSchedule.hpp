@@ -59,6 +59,14 @@ public:
     double progress() const;
     std::string describe() const;
 
+    // Restart: continue after the accepted `level` at `time` whose step was `lastStep`. Planned
+    // schedules keep their times after `time`.
+    void resume(int level, double time, double lastStep);
+    // Cure for a failed level > 0: replace the current step by factor * dt, keeping the level's
+    // original time as a later level (planned schedules) or letting the adaptive rule grow back.
+    // Returns false (nothing changed) at level 0 or when the step would fall below 1e-12 s.
+    bool cutStep(double factor);
+
 private:
     double nextStepCandidate(double change) const;
     TimeScheduleParameters params_;

@@ -577,6 +577,62 @@ void StructuralSolver::rejectLevel()
     lastConverged_ = true;
 }
 
+CommittedState StructuralSolver::committedState() const
+{
+    CommittedState state;
+    state.displacement = uCommitted_;
+    state.externalForces = fextCommitted_;
+    state.loadFactor = factorCommitted_;
+    state.cells = ownCells_;
+    state.history = committedHistory_;
+    return state;
+}
+
+void StructuralSolver::restoreCommittedState(const std::vector<CommittedState>& parts)
+{
+    const auto fail = [](const std::string& why) {
+        throw std::runtime_error("restart: the saved solid state does not fit: " + why +
+                                 " (same mesh and material as the checkpointed run?)");
+    };
+    if (parts.empty())
+        fail("no parts");
+    const std::size_t nDofs = static_cast<std::size_t>(numDofs());
+    const std::size_t hs = law_.historySize();
+    // Where each cell's history sits in the saved parts.
+    std::vector<std::pair<int, std::size_t>> where(mesh_.cells.size(), {-1, 0});
+    for (std::size_t r = 0; r < parts.size(); ++r)
+    {
+        const auto& p = parts[r];
+        if (p.displacement.size() != nDofs || p.externalForces.size() != nDofs)
+            fail("displacement of " + std::to_string(p.displacement.size() / 3) + " nodes, mesh has " +
+                 std::to_string(nDofs / 3));
+        std::size_t offset = 0;
+        for (int c : p.cells)
+        {
+            if (c < 0 || c >= mesh_.cells.size())
+                fail("cell id " + std::to_string(c) + " out of range");
+            where[c] = {static_cast<int>(r), offset};
+            offset += quadrature(mesh_.cells.types[c]).size() * hs;
+        }
+        if (offset != p.history.size())
+            fail("material history of " + std::to_string(p.history.size()) + " values, expected " +
+                 std::to_string(offset));
+    }
+    for (std::size_t k = 0; k < ownCells_.size(); ++k)
+    {
+        const int c = ownCells_[k];
+        if (where[c].first < 0)
+            fail("cell " + std::to_string(c) + " missing");
+        const std::size_t count = static_cast<std::size_t>(pointOffset_[k + 1] - pointOffset_[k]) * hs;
+        const double* from = parts[where[c].first].history.data() + where[c].second;
+        std::copy(from, from + count, committedHistory_.begin() + static_cast<std::ptrdiff_t>(pointOffset_[k] * hs));
+    }
+    uCommitted_ = u_ = parts[0].displacement;
+    fextCommitted_ = fextLast_ = parts[0].externalForces;
+    factorCommitted_ = factorLast_ = parts[0].loadFactor;
+    lastConverged_ = true;
+}
+
 std::vector<double> StructuralSolver::wettedNodeCoordinates() const
 {
     std::vector<double> x;

@@ -90,6 +90,19 @@ struct InterfaceLoads
     std::vector<double> forces;
 };
 
+// Restart: what acceptLevel() committed. displacement, externalForces and loadFactor are the
+// same on every rank; cells/history are one rank's part (the history of each of its cells, the
+// cell's integration points x historySize doubles, in `cells` order), so that a restart may use
+// another number of ranks.
+struct CommittedState
+{
+    std::vector<double> displacement;   // 3 per node [m]
+    std::vector<double> externalForces; // 3 per node [N], loads of the last accepted level
+    double loadFactor = 0.0;
+    std::vector<int> cells;             // global cell ids owned by the rank that saved it
+    std::vector<double> history;
+};
+
 struct SolveReport
 {
     bool converged = false;
@@ -122,6 +135,12 @@ public:
     void acceptLevel();
     // Back to the last accepted state (e.g. after a failed coupling level).
     void rejectLevel();
+    // This rank's part of the committed state (for a checkpoint).
+    CommittedState committedState() const;
+    // Collective. parts: the committedState() of every rank of the run that saved them (any
+    // rank count; same mesh and material). Sets the committed and current state; throws
+    // std::runtime_error when the parts do not fit this mesh/material.
+    void restoreCommittedState(const std::vector<CommittedState>& parts);
 
     // Replicated on every rank.
     const std::vector<double>& displacement() const { return u_; } // 3 per node [m]
