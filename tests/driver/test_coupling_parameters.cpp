@@ -63,6 +63,10 @@ TEST(CouplingParameters, ShippedExampleParses)
     EXPECT_EQ(p.mapping.wendland.solver, "auto");
     EXPECT_EQ(p.mapping.wendland.directMaxPoints, 20000);
     EXPECT_NE(p.echo().find("rbf-wendland-c2: {support_radius: 0.004, solver: auto"), std::string::npos);
+    EXPECT_EQ(p.checkpoint.every, 1);
+    EXPECT_EQ(p.checkpoint.keep, 2);
+    EXPECT_EQ(p.recovery.maxRetries, 3);
+    EXPECT_DOUBLE_EQ(p.recovery.stepFactor, 0.25);
 }
 
 TEST(CouplingParameters, MinimalBlockHasSteadyDefaults)
@@ -99,4 +103,9 @@ TEST(CouplingParameters, BadInputNamesTheKey)
               std::string::npos);
     // Negative timeout.
     EXPECT_NE(errorOf(minimal + "  launch: {timeout: -1}\n").find("timeout"), std::string::npos);
+    EXPECT_NE(errorOf(minimal + "  checkpoint: {keep: 0}\n").find("coupling.checkpoint.keep"), std::string::npos);
+    EXPECT_NE(errorOf(minimal + "  checkpoint: {every: -1}\n").find("every"), std::string::npos);
+    EXPECT_NE(errorOf(minimal + "  recovery: {relaxation_factor: 1.5}\n").find("relaxation_factor"),
+              std::string::npos);
+    EXPECT_NE(errorOf(minimal + "  recovery: {retries: 2}\n").find("unknown key 'retries'"), std::string::npos);
 }
