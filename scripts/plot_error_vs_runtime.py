@@ -2,7 +2,8 @@
 """Plot |relative error| against wall time, one line per quantity.
 
 usage: plot_error_vs_runtime.py CSV PNG [TITLE]
-CSV columns: level,size,cores,wall_s,quantity,value,reference,rel_error
+CSV columns: level,size,cores,wall_s,quantity,value,reference,rel_error (further columns are
+ignored). Rows with rel_error exactly 0 (a level that is its own reference) are not plotted.
 """
 import csv
 import sys
@@ -19,9 +20,13 @@ def main():
     src, png = sys.argv[1], sys.argv[2]
     title = sys.argv[3] if len(sys.argv) > 3 else src
     series = {}
+    skipped = set()
     with open(src, newline="") as f:
         for row in csv.DictReader(f):
             q = row["quantity"]
+            if float(row["rel_error"]) == 0.0:
+                skipped.add(row["level"])
+                continue
             series.setdefault(q, []).append(
                 (float(row["wall_s"]), abs(float(row["rel_error"])), row["level"], row["size"]))
     if not series:
@@ -36,6 +41,9 @@ def main():
     ax.set_xlabel("wall time [s]")
     ax.set_ylabel("|relative error|")
     ax.set_title(f"{title}: error against run time")
+    if skipped:
+        ax.text(0.01, 0.01, "own reference, not shown: " + ", ".join(sorted(skipped)),
+                transform=ax.transAxes, fontsize=7)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend()
     fig.tight_layout()

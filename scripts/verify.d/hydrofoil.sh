@@ -1,0 +1,135 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# Hydrofoil mesh study (cases/hydrofoil, presets coarse / medium / fine): the coupled steady
+# ELASTIC baseline (run.sh --material baseline: E = 47.40 MPa, nu = 0.49, the viscoelastic run's
+# t = 0 instantaneous state; fluid-app 2 ranks + solid-app 1 rank, Tet10 foil, MPMD).
+# Quantities: tip_aoa [deg], tip_deflection [m] (lift-direction, -y, displacement of the tip
+# mid-chord: mean of the tip leading and trailing edge points), lift = -Fy and drag = Fx [N].
+# Reference: the finest level run (its own rows have rel_error 0); with three levels the
+# observed order and a Richardson estimate per quantity go to richardson.csv (information only:
+# the snapped meshes are not a geometric refinement sequence, so the order may be meaningless).
+# Driven by scripts/verify hydrofoil; writes $FSI_VERIFY_DIR/error_vs_runtime.csv with the
+# standard columns (size = fluid cells, cores = MPI ranks, wall_s = coupled solve, meshing
+# excluded) and extra trailing columns cpu_s (user + sys of every process of the coupled solve,
+# as the machine may be shared), mesh_wall_s, mesh_cpu_s, load1 (load average at the start),
+# coupling_iterations, fluid_iterations.
+# Environment:
+#   HYDROFOIL_LEVELS   preset list, coarse to fine (default "coarse medium fine")
+#   HYDROFOIL_RUNS     folder of the mesh-LEVEL/ and run-LEVEL/ folders (default $FSI_VERIFY_DIR)
+#   HYDROFOIL_REUSE=1  keep a level's mesh (mesh-LEVEL/mesh/mesh-summary.txt) and finished run
+#                      (run-LEVEL/results/baseline/history.csv) instead of redoing them
+#   HYDROFOIL_MAX_ERROR  if set (e.g. 0.10): fail unless every quantity of the second-finest
+#                      level is within this relative error of the finest (the CTest check)
+set -euo pipefail
+: "${FSI_VERIFY_DIR:?run through scripts/verify hydrofoil}"
+root=${FSI_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}
+export FSI_ROOT=$root
+case_dir=$root/cases/hydrofoil
+export PATH=${FSI_BUILD_DIR:-$root/build}/bin:$PATH
+levels=${HYDROFOIL_LEVELS:-"coarse medium fine"}
+runs=${HYDROFOIL_RUNS:-$FSI_VERIFY_DIR}
+reuse=${HYDROFOIL_REUSE:-0}
+npf=2 nps=1
+csv=$FSI_VERIFY_DIR/error_vs_runtime.csv
+raw=$FSI_VERIFY_DIR/levels.csv
+mkdir -p "$runs"
+echo "level,size,cores,wall_s,cpu_s,mesh_wall_s,mesh_cpu_s,load1,coupling_iterations,fluid_iterations,tip_aoa,tip_deflection,lift,drag" > "$raw"
+TIMEFORMAT='%R %U %S'
+for level in $levels; do
+  m=$runs/mesh-$level r=$runs/run-$level
+  if [ "$reuse" = 1 ] && [ -f "$m/mesh/mesh-summary.txt" ]; then
+    echo "hydrofoil: $level: reusing the mesh in $m"
+  else
+    echo "hydrofoil: $level: meshing in $m ($(date +%H:%M:%S))"
+    rm -rf "$m"; mkdir -p "$m"
+    { time "$case_dir/mesh.sh" --out "$m/mesh" --preset "$level" --np "$npf" > "$m/log.mesh" 2>&1; } 2> "$m/time.mesh" ||
+      { echo "error: hydrofoil $level meshing failed, see $m/log.mesh" >&2; tail -5 "$m/log.mesh" >&2; exit 1; }
+  fi
+  if [ "$reuse" = 1 ] && [ -f "$r/results/baseline/history.csv" ] && [ -f "$r/time.run" ]; then
+    echo "hydrofoil: $level: reusing the run in $r"
+  else
+    echo "hydrofoil: $level: coupled baseline in $r ($(date +%H:%M:%S), load $(cut -d' ' -f1 /proc/loadavg))"
+    rm -rf "$r"
+    cp -r "$case_dir" "$r"
+    cut -d' ' -f1 /proc/loadavg > "$r/load1"
+    { time (cd "$r" && ./run.sh --preset "$level" --material baseline --np-fluid "$npf" --np-solid "$nps" \
+        --mesh-from "$m" > log.run 2>&1); } 2> "$r/time.run" ||
+      { echo "error: hydrofoil $level run failed, see $r/log.run" >&2; tail -5 "$r/log.run" >&2; exit 1; }
+  fi
+  cells=$(sed -n 's/^fluid: cells \([0-9]*\).*/\1/p' "$m/mesh/mesh-summary.txt" | tail -n 1)
+  read -r rw ru rs < "$r/time.run"
+  mw="" mc=""
+  if [ -s "$m/time.mesh" ]; then read -r mw mu ms < "$m/time.mesh"; mc=$(awk -v a="$mu" -v b="$ms" 'BEGIN { printf "%.1f", a + b }'); fi
+  "$FSI_PYTHON" - "$r/results/baseline/history.csv" "$level" "$cells" "$((npf + nps))" "$rw" "$ru" "$rs" \
+      "$mw" "$mc" "$(cat "$r/load1" 2>/dev/null || echo)" >> "$raw" <<'PY'
+import csv, sys
+path, level, cells, ranks, rw, ru, rs, mw, mc, load = sys.argv[1:]
+row = list(csv.DictReader(open(path)))[-1]
+defl = -0.5 * (float(row["tip_le_uy"]) + float(row["tip_te_uy"]))
+print(f"{level},{cells},{ranks},{float(rw):.1f},{float(ru) + float(rs):.1f},{mw},{mc},{load},"
+      f"{row['coupling_iterations']},{row['fluid_iterations']},{float(row['tip_aoa_deg']):.6g},"
+      f"{defl:.6e},{-float(row['Fy']):.6g},{float(row['Fx']):.6g}")
+PY
+  tail -n 1 "$raw"
+done
+
+# Errors against the finest level; Richardson information with three levels.
+"$FSI_PYTHON" - "$raw" "$csv" "$FSI_VERIFY_DIR/richardson.csv" "${HYDROFOIL_MAX_ERROR:-}" <<'PY'
+import csv, math, sys
+raw, out, rich, max_error = sys.argv[1:]
+rows = list(csv.DictReader(open(raw)))
+if len(rows) < 2:
+    sys.exit("error: hydrofoil study needs at least two levels (HYDROFOIL_LEVELS)")
+quantities = ["tip_aoa", "tip_deflection", "lift", "drag"]
+ref = rows[-1]
+extra = ["cpu_s", "mesh_wall_s", "mesh_cpu_s", "load1", "coupling_iterations", "fluid_iterations"]
+with open(out, "w") as f:
+    f.write("level,size,cores,wall_s,quantity,value,reference,rel_error," + ",".join(extra) + "\n")
+    for r in rows:
+        for q in quantities:
+            v, vr = float(r[q]), float(ref[q])
+            f.write(f"{r['level']},{r['size']},{r['cores']},{r['wall_s']},{q},{v:.6g},{vr:.6g},"
+                    f"{(v - vr) / vr + 0.0:.6e}," + ",".join(r[k] for k in extra) + "\n")
+print(f"reference: level {ref['level']} ({ref['size']} cells)")
+for r in rows[:-1]:
+    print(f"  {r['level']:>7}: " + "  ".join(
+        f"{q} {100 * (float(r[q]) - float(ref[q])) / float(ref[q]):+.2f} %" for q in quantities))
+if len(rows) >= 3:
+    # h ~ cells^(-1/3); f = f* + C h^p through the last three levels (non-constant ratio):
+    # solve (h3^p - h2^p) / (h2^p - h1^p) = (f3 - f2) / (f2 - f1) for p by bisection.
+    a, b, c = rows[-3:]
+    h = [float(x["size"]) ** (-1.0 / 3.0) for x in (a, b, c)]
+    with open(rich, "w") as f:
+        f.write("quantity,coarse_level,middle_level,fine_level,observed_order,richardson_estimate,"
+                "finest_rel_to_estimate,note\n")
+        for q in quantities:
+            f1, f2, f3 = (float(x[q]) for x in (a, b, c))
+            ratio = (f3 - f2) / (f2 - f1) if f2 != f1 else float("nan")
+            note, p, est = "", float("nan"), float("nan")
+            if not (0 < ratio < 1):
+                note = "not monotone convergent" if ratio <= 0 else "differences do not shrink"
+            else:
+                g = lambda pp: (h[2] ** pp - h[1] ** pp) / (h[1] ** pp - h[0] ** pp) - ratio
+                lo, hi = 1e-3, 10.0
+                if g(lo) * g(hi) > 0:
+                    note = "no order in (0, 10]"
+                else:
+                    for _ in range(200):
+                        mid = 0.5 * (lo + hi)
+                        lo, hi = (mid, hi) if g(lo) * g(mid) > 0 else (lo, mid)
+                    p = 0.5 * (lo + hi)
+                    C = (f3 - f2) / (h[2] ** p - h[1] ** p)
+                    est = f3 - C * h[2] ** p
+            rel = (f3 - est) / est if est == est and est != 0 else float("nan")
+            f.write(f"{q},{a['level']},{b['level']},{c['level']},{p:.3g},{est:.6g},{rel:.3e},{note}\n")
+    print(open(rich).read(), end="")
+if max_error:
+    tol = float(max_error)
+    r = rows[-2]
+    bad = [q for q in quantities if abs((float(r[q]) - float(ref[q])) / float(ref[q])) > tol]
+    if bad:
+        sys.exit(f"error: hydrofoil level {r['level']} differs from {ref['level']} by more than "
+                 f"{100 * tol:g} % in {', '.join(bad)}; refine the presets or raise HYDROFOIL_MAX_ERROR")
+    print(f"check: every quantity of {r['level']} within {100 * tol:g} % of {ref['level']}")
+PY
+cat "$csv"
