@@ -16,7 +16,7 @@ Description
       -coupled     coupled with solid-app through fsi::comm
 
 Usage
-    fluid-app [-rigid | -prescribed | -coupled] [-parallel] [-case DIR]
+    fluid-app [-rigid | -prescribed | -coupled [-restart]] [-parallel] [-case DIR]
               [--launch port|mpmd] [--port-file FILE] [--comm-timeout SECONDS]
 \*---------------------------------------------------------------------------*/
 
@@ -41,6 +41,12 @@ int main(int argc, char* argv[])
     argList::addBoolOption("rigid", "Uncoupled: solve steady to convergence and write forces");
     argList::addBoolOption("prescribed", "Prescribed interface motion from system/fsiDict (tests)");
     argList::addBoolOption("coupled", "Coupled with solid-app through fsi::comm (overrides fsiDict mode)");
+    argList::addBoolOption
+    (
+        "restart",
+        "Coupled: continue a run from controlDict's startTime (set by scripts/fsi-restart-fluid)"
+        " together with solid-app --restart; appends to the postProcessing/fsi logs"
+    );
 
     #include "setRootCase.H"
     #include "createTime.H"
@@ -148,7 +154,12 @@ int main(int argc, char* argv[])
                 << "coupled mode needs fsi::comm; this fluid-app was built without comm/"
                 << exit(FatalError);
         }
-        rc = coupling.runCoupled(steadySolve, fsi::fluid::makeCommTransport());
+        rc = coupling.runCoupled
+        (
+            steadySolve,
+            fsi::fluid::makeCommTransport(),
+            args.found("restart")
+        );
     }
     else
     {

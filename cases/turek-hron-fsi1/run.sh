@@ -6,7 +6,7 @@
 #
 # usage: ./run.sh [--preset coarse|medium|fine] [--launch mpmd|port] [--material M]
 #                 [--accelerator aitken|constant|iqn-ils] [--relaxation W] [--tolerance EPS]
-#                 [--np-fluid N] [--timeout S] [--mesh-only]
+#                 [--np-fluid N] [--timeout S] [--times T0,T1,...] [--mesh-only] [--restart]
 #   --preset       mesh resolution of both sides (default coarse), see README.md
 #   --launch       mpmd (default): mpirun -np N fluid-app -case fluid : -np 1 solid-app run.yaml
 #                  port: two mpiruns through scripts/launch-port (needs FSI_ROOT or launch-port on PATH)
@@ -20,15 +20,20 @@
 #   --np-fluid     fluid ranks (default 1; > 1 decomposes the fluid mesh, hierarchical)
 #   --timeout      comm timeout of both programs [s] (default by preset: coarse 600, medium 1800,
 #                  fine 5400: the first fluid solve starts from rest and takes minutes on a loaded machine)
+#   --times        override coupling.time with a list of levels (viscoelastic, first 0), e.g.
+#                  0,0.5,1,2,1e6
+#   --restart      continue an interrupted run in this folder from results/checkpoint/latest (same
+#                  options otherwise; meshes and run.yaml are kept; the earlier logs are kept as
+#                  log.*.partN); see scripts/fsi-restart-fluid
 # Writes log.fluid, log.solid, run.yaml (the config used) and results/: history.csv,
 # coupling.csv, summary.csv (solid-app), forces.csv, benchmark.csv, summary.txt (tools/summary.py),
 # fluid-coupling.csv (fluid-app's per-iteration log), wall_s.
 set -euo pipefail
 here=$(pwd)
-usage() { sed -n '6,28p' "$0" | sed 's/^# \{0,1\}//'; exit "${1:-0}"; }
+usage() { sed -n '6,34p' "$0" | sed 's/^# \{0,1\}//'; exit "${1:-0}"; }
 
 preset=coarse launch=mpmd material=elastic accelerator="" relaxation="" tolerance="" npf=1
-timeout='' mesh_only=0 beam=
+timeout='' mesh_only=0 beam= times='' restart=0
 while [ $# -gt 0 ]; do
   case "$1" in
     --preset) preset=$2; shift 2 ;;
@@ -41,6 +46,8 @@ while [ $# -gt 0 ]; do
     --beam) beam=$2; shift 2 ;;
     --timeout) timeout=$2; shift 2 ;;
     --mesh-only) mesh_only=1; shift ;;
+    --times) times=$2; shift 2 ;;
+    --restart) restart=1; shift ;;
     -h|--help) usage 0 ;;
     *) echo "error: run.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
@@ -75,6 +82,19 @@ export OMPI_MCA_btl_tcp_if_include=${OMPI_MCA_btl_tcp_if_include:-lo}
 export OMPI_MCA_oob_tcp_if_include=${OMPI_MCA_oob_tcp_if_include:-lo}
 py=${FSI_PYTHON:-/usr/bin/python3}
 
+parallel=()
+[ "$npf" -gt 1 ] && parallel=(-parallel)
+restart_flags=()
+if [ "$restart" = 1 ]; then
+  # --- restart: keep meshes, config and results; point the fluid at the checkpointed level ---
+  [ -f run.yaml ] && [ -f results/checkpoint/latest ] ||
+    { echo "error: run.sh --restart: no results/checkpoint/latest here (run without --restart first)" >&2; exit 2; }
+  "${FSI_ROOT}/scripts/fsi-restart-fluid" fluid results
+  k=1; while [ -e "log.solid.part$k" ] || [ -e "log.fluid.part$k" ]; do k=$((k + 1)); done
+  for f in log.solid log.fluid log.mpirun; do if [ -e "$f" ]; then mv "$f" "$f.part$k"; fi; done
+  restart_flags=(--restart)
+  echo "[fsi1] restarting ($material, launch $launch) from $(sed -n 's/^folder //p' results/checkpoint/latest)"
+else
 # --- meshes -----------------------------------------------------------------------------
 echo "[fsi1] preset $preset: fluid $flevel, beam Hex20 ${nx} x ${ny} x 1; $material, launch $launch"
 rm -rf fluid/0 fluid/processor* fluid/postProcessing results
@@ -82,7 +102,6 @@ cp -r fluid/0.orig fluid/0
 "$py" "$generator" "$flevel" fluid/system/blockMeshDict
 (cd fluid && blockMesh > log.blockMesh 2>&1) || { echo "error: blockMesh failed, see fluid/log.blockMesh" >&2; exit 1; }
 fluid_cells=$(awk '/nCells:/ {print $2; exit}' fluid/log.blockMesh)
-parallel=()
 if [ "$npf" -gt 1 ]; then
   cat > fluid/system/decomposeParDict <<EOD
 FoamFile { version 2.0; format ascii; class dictionary; object decomposeParDict; }
@@ -91,7 +110,6 @@ method          hierarchical;       // Debian's scotch/metis are stubs
 coeffs { n ($npf 1 1); order xyz; }
 EOD
   (cd fluid && decomposePar -force > log.decomposePar 2>&1) || { echo "error: decomposePar failed" >&2; exit 1; }
-  parallel=(-parallel)
 fi
 gmsh -3 -order 2 -setnumber nx "$nx" -setnumber ny "$ny" solid/beam.geo -o solid/beam.msh > solid/log.gmsh 2>&1 ||
   { echo "error: gmsh failed, see solid/log.gmsh" >&2; exit 1; }
@@ -115,6 +133,12 @@ fi
 if [ -n "$tolerance" ]; then
   sed -i "s/^\(    absolute_tolerance:\) [^ ]*/\1 $tolerance/" run.yaml
 fi
+if [ -n "$times" ]; then
+  grep -q "^  time: {type: list" run.yaml ||
+    { echo "error: run.sh: --times needs a 'time: {type: list ...}' line in $config (use --material viscoelastic)" >&2; exit 2; }
+  sed -i "s/^  time: {type: list.*/  time: {type: list, times: [${times//,/, }]}/" run.yaml
+fi
+fi # restart
 
 # --- coupled run ----------------------------------------------------------------------------
 logrun=$here/tools/logrun
@@ -125,8 +149,8 @@ set +e
 if [ "$launch" = mpmd ]; then
   mpirun --allow-run-as-root --oversubscribe --mca btl self,vader,tcp \
     -x WM_PROJECT_DIR -x FOAM_SIGFPE -x OMPI_MCA_btl_tcp_if_include -x OMPI_MCA_oob_tcp_if_include \
-    -np "$npf" "$logrun" log.fluid 0 fluid-app -case fluid "${parallel[@]}" --launch mpmd --comm-timeout "$timeout" \
-    : -np 1 "$logrun" log.solid "$npf" solid-app run.yaml --launch mpmd --comm-timeout "$timeout" \
+    -np "$npf" "$logrun" log.fluid 0 fluid-app -case fluid "${parallel[@]}" "${restart_flags[@]/--/-}" --launch mpmd --comm-timeout "$timeout" \
+    : -np 1 "$logrun" log.solid "$npf" solid-app run.yaml "${restart_flags[@]}" --launch mpmd --comm-timeout "$timeout" \
     > log.mpirun 2>&1
   rc=$?
 else
@@ -135,8 +159,8 @@ else
   elif command -v launch-port >/dev/null; then lp=$(command -v launch-port)
   else echo "error: run.sh: --launch port needs scripts/launch-port (set FSI_ROOT to the repository)" >&2; exit 2; fi
   OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "$lp" --mpi-flag --oversubscribe --grace 30 \
-    -np "$npf" "$logrun" log.fluid 0 fluid-app -case fluid "${parallel[@]}" --launch port --port-file "$port_file" --comm-timeout "$timeout" \
-    : -np 1 "$logrun" log.solid 0 solid-app run.yaml --launch port --port-file "$port_file" --comm-timeout "$timeout" \
+    -np "$npf" "$logrun" log.fluid 0 fluid-app -case fluid "${parallel[@]}" "${restart_flags[@]/--/-}" --launch port --port-file "$port_file" --comm-timeout "$timeout" \
+    : -np 1 "$logrun" log.solid 0 solid-app run.yaml "${restart_flags[@]}" --launch port --port-file "$port_file" --comm-timeout "$timeout" \
     > log.mpirun 2>&1
   rc=$?
 fi

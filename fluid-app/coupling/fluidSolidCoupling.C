@@ -11,6 +11,7 @@
 #include "polyMeshTools.H"
 #include "ListOps.H"
 #include "forces.H"
+#include "points0MotionSolver.H"
 #include "unitConversion.H"
 #include "clockTime.H"
 
@@ -110,8 +111,23 @@ Foam::fluidSolidCoupling::fluidSolidCoupling
 
     buildGlobalOrdering();
 
-    const labelList& meshPoints = mesh_.boundaryMesh()[patchi_].meshPoints();
-    points0_ = pointField(mesh_.points(), meshPoints);
+    const polyPatch& patch = mesh_.boundaryMesh()[patchi_];
+    const labelList& meshPoints = patch.meshPoints();
+    const pointIOField allPoints0(points0MotionSolver::points0IO(mesh_));
+    if (allPoints0.size() != mesh_.nPoints())
+    {
+        FatalErrorInFunction
+            << "the reference points " << allPoints0.objectPath() << " do not match the mesh ("
+            << allPoints0.size() << " vs " << mesh_.nPoints() << " points)" << exit(FatalError);
+    }
+    points0_ = pointField(allPoints0, meshPoints);
+    faceCentres0_.setSize(patch.size());
+    faceAreas0_.setSize(patch.size());
+    forAll(patch, facei)
+    {
+        faceCentres0_[facei] = patch[facei].centre(allPoints0);
+        faceAreas0_[facei] = patch[facei].areaNormal(allPoints0);
+    }
     displacement_ = vectorField(meshPoints.size(), Zero);
 
     Info<< "fsi: interface patch " << patchName_ << ": " << nGlobalPoints_
@@ -213,7 +229,6 @@ void Foam::fluidSolidCoupling::buildGlobalOrdering()
 
 fsi::fluid::InterfaceGeometry Foam::fluidSolidCoupling::gatherGeometry() const
 {
-    const polyPatch& pp = mesh_.boundaryMesh()[patchi_];
     const label nProcs = Pstream::nProcs(), me = Pstream::myProcNo();
 
     List<labelList> pIds(nProcs), fIds(nProcs);
@@ -221,8 +236,8 @@ fsi::fluid::InterfaceGeometry Foam::fluidSolidCoupling::gatherGeometry() const
     pIds[me] = pointToGlobal_;
     fIds[me] = faceToGlobal_;
     pts[me] = points0_;
-    ctrs[me] = pp.faceCentres();
-    areas[me] = pp.faceAreas();
+    ctrs[me] = faceCentres0_;
+    areas[me] = faceAreas0_;
     Pstream::gatherList(pIds);
     Pstream::gatherList(fIds);
     Pstream::gatherList(pts);
@@ -655,21 +670,42 @@ int Foam::fluidSolidCoupling::runRigid(const SteadySolver& solve)
 int Foam::fluidSolidCoupling::runCoupled
 (
     const SteadySolver& solve,
-    std::unique_ptr<fsi::fluid::CouplingTransport> transport
+    std::unique_ptr<fsi::fluid::CouplingTransport> transport,
+    const bool restart
 )
 {
     using namespace fsi::fluid;
     transport_ = std::move(transport);
+    const fileName logDir = mesh_.time().globalPath()/"postProcessing"/"fsi";
     if (Pstream::master())
     {
-        mkDir(mesh_.time().globalPath()/"postProcessing"/"fsi");
+        mkDir(logDir);
+        const bool append = restart && isFile(logDir/"coupling.csv");
         logFile_.reset
         (
-            new OFstream(mesh_.time().globalPath()/"postProcessing"/"fsi"/"coupling.csv")
+            new OFstream
+            (
+                logDir/"coupling.csv",
+                IOstream::ASCII,
+                IOstream::currentVersion,
+                IOstream::UNCOMPRESSED,
+                append
+            )
         );
-        logFile_()
-            << "step,iteration,simpleIterations,converged,residualU,residualP,"
-            << "Fx,Fy,Fz,maxDisplacement,wall_s" << endl;
+        if (!append)
+        {
+            logFile_()
+                << "step,iteration,simpleIterations,converged,residualU,residualP,"
+                << "Fx,Fy,Fz,maxDisplacement,wall_s" << endl;
+        }
+        if (!restart || !isFile(logDir/"accepted.csv"))
+        {
+            OFstream(logDir/"accepted.csv")() << "step,time,timeName" << endl;
+        }
+    }
+    if (restart)
+    {
+        Info<< "fsi: restarted from the fields of time " << mesh_.time().timeName() << nl << endl;
     }
 
     const InterfaceGeometry geometry = gatherGeometry();
@@ -737,6 +773,18 @@ int Foam::fluidSolidCoupling::runCoupled
                 Info<< "fsi: ACCEPT step " << c.step << " time " << c.time << endl;
                 reportForces("accepted");
                 writeLevel(c.time);
+                if (Pstream::master())
+                {
+                    // Written after the fields: a listed level is complete on disk (restart).
+                    OFstream
+                    (
+                        logDir/"accepted.csv",
+                        IOstream::ASCII,
+                        IOstream::currentVersion,
+                        IOstream::UNCOMPRESSED,
+                        true
+                    )() << c.step << ',' << c.time << ',' << Time::timeName(c.time) << endl;
+                }
                 break;
             }
             case CommandKind::finish:

@@ -5,7 +5,8 @@
 usage: summary.py RUN_DIR [--depth D] [--wall SECONDS]
 
 Reads RUN_DIR/results/history.csv (solid-app: one row per accepted level, watched point A)
-and RUN_DIR/log.fluid (fluid-app: "fsi: ACCEPT step N time T" followed by
+and RUN_DIR/log.fluid (after a restart also the earlier parts log.fluid.part1, 2, ...; a level
+accepted twice counts with its last line) (fluid-app: "fsi: ACCEPT step N time T" followed by
 "fsi: accepted force on ... total (Fx Fy Fz) N" on the force patches cylinder + beam).
 Writes
   results/forces.csv     level,time,Fx,Fy,Fz [N] (whole one-cell-thick body),drag,lift [N/m]
@@ -23,21 +24,22 @@ REFERENCE = {"ux": 2.270493e-5, "uy": 8.208773e-4, "drag": 14.29426, "lift": 0.7
 UNITS = {"ux": "m", "uy": "m", "drag": "N/m", "lift": "N/m"}
 
 
-def fluid_forces(log):
-    """[(time, (Fx, Fy, Fz))] of the accepted levels, in order."""
-    out, time = [], None
+def fluid_forces(logs):
+    """{step: (time, (Fx, Fy, Fz))} of the accepted levels in the logs (read in order)."""
+    out, step, time = {}, None, None
     accept = re.compile(r"^fsi: ACCEPT step (\S+) time (\S+)")
     force = re.compile(r"^fsi: accepted force on .*?total \((\S+) (\S+) (\S+)\) N")
-    with open(log, errors="replace") as f:
-        for line in f:
-            m = accept.match(line)
-            if m:
-                time = float(m.group(2))
-                continue
-            m = force.match(line)
-            if m and time is not None:
-                out.append((time, tuple(float(m.group(i)) for i in (1, 2, 3))))
-                time = None
+    for log in logs:
+        with open(log, errors="replace") as f:
+            for line in f:
+                m = accept.match(line)
+                if m:
+                    step, time = int(m.group(1)), float(m.group(2))
+                    continue
+                m = force.match(line)
+                if m and time is not None:
+                    out[step] = (time, tuple(float(m.group(i)) for i in (1, 2, 3)))
+                    time = None
     return out
 
 
@@ -56,10 +58,14 @@ def main():
         history = list(csv.DictReader(f))
     if not history:
         sys.exit("summary.py: %s/history.csv has no accepted level" % res)
-    forces = fluid_forces(os.path.join(run, "log.fluid"))
-    if len(forces) != len(history):
-        sys.exit("summary.py: %d accepted levels in history.csv but %d accepted force lines in "
-                 "log.fluid" % (len(history), len(forces)))
+    parts = sorted((p for p in os.listdir(run) if re.fullmatch(r"log\.fluid\.part\d+", p)),
+                   key=lambda p: int(p.rsplit("part", 1)[1]))
+    by_step = fluid_forces([os.path.join(run, p) for p in parts + ["log.fluid"]])
+    missing = [h["level"] for h in history if int(h["level"]) not in by_step]
+    if missing:
+        sys.exit("summary.py: accepted levels %s of history.csv have no accepted force line in "
+                 "log.fluid" % ", ".join(missing))
+    forces = [by_step[int(h["level"])] for h in history]
 
     rows = []
     with open(os.path.join(res, "forces.csv"), "w") as f:
