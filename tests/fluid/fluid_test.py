@@ -242,6 +242,27 @@ def t_quality_guard(a):
     check(not os.path.isdir(os.path.join(d, "1")), "no field written for the failed level")
 
 
+def t_bad_case(a):
+    """Bad OpenFOAM-case input: a missing interface patch, a missing fsiDict key, a restart
+    without a checkpointed level. Each stops non-zero, naming system/fsiDict (or the file) and the fix."""
+    d = prepare(a, "bad-case", single=True)
+    fsi = os.path.join(d, "system", "fsiDict")
+    good = open(fsi).read()
+    open(fsi, "w").write(re.sub(r"interfacePatch\s+\w+;", "interfacePatch foil;", good))
+    rc, log = run([a.fluid_app, "-rigid", "-case", d], os.path.join(d, "log.missing-patch"))
+    check(rc != 0 and "system/fsiDict: interfacePatch 'foil' is not a patch of the mesh; use one of" in log,
+          "missing interface patch: exit %d, message names system/fsiDict and the patches to use" % rc)
+    open(fsi, "w").write(re.sub(r"interfacePatch\s+\w+;", "", good))
+    rc, log = run([a.fluid_app, "-rigid", "-case", d], os.path.join(d, "log.missing-key"))
+    check(rc != 0 and "interfacePatch" in log and "fsiDict" in log,
+          "missing interfacePatch key: exit %d, message names the key and the file" % rc)
+    open(fsi, "w").write(good)
+    restart = os.path.join(a.case_dir, "..", "..", "scripts", "fsi-restart-fluid")
+    rc, log = run([restart, d, os.path.join(d, "no-solid-output")], os.path.join(d, "log.restart"))
+    check(rc == 2 and "no checkpoint to restart from" in log,
+          "restart without a solid checkpoint: exit %d, one-line error" % rc)
+
+
 def t_parallel_equivalence(a):
     res = {}
     for n in (1, 2):
@@ -362,7 +383,7 @@ def t_peer_abort(a):
 
 TESTS = {"cfd1-coarse": t_cfd1_coarse, "cfd1-fine": t_cfd1_fine, "force-consistency": t_force_consistency,
          "motion-rotation": t_motion_rotation, "motion-bending": t_motion_bending,
-         "quality-guard": t_quality_guard, "parallel-equivalence": t_parallel_equivalence,
+         "quality-guard": t_quality_guard, "bad-case": t_bad_case, "parallel-equivalence": t_parallel_equivalence,
          "mpmd": t_mpmd, "port": t_port, "peer-abort": t_peer_abort}
 
 
