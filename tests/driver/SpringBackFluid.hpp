@@ -31,6 +31,12 @@ public:
         interface_.faceAreas = mapping::PointCloud::Zero(n, 3);
     }
     const driver::FluidInterface& interface() const override { return interface_; }
+    // Moves the fluid's interface away (a case whose fluid and solid meshes do not overlap).
+    void shiftInterface(double dx, double dy, double dz)
+    {
+        for (mapping::PointCloud* c : {&interface_.points, &interface_.faceCentres})
+            c->rowwise() += Eigen::RowVector3d(dx, dy, dz);
+    }
     driver::FluidResponse solve(int level, int iteration, double time,
                                 const mapping::Values& pointDisplacement) override
     {

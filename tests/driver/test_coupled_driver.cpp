@@ -115,6 +115,7 @@ struct RunOptions
     std::string out;       // "" = a fresh folder, removed afterwards
     bool restart = false;
     double unstableStep = 0; // > 0: the fluid double returns NaN forces for larger steps
+    double interfaceShift = 0; // [m] in x: the fluid interface moved away from the solid's
 };
 
 CoupledResult runCoupled(const material::MaterialParameters& params, driver::CouplingParameters coupling,
@@ -125,6 +126,7 @@ CoupledResult runCoupled(const material::MaterialParameters& params, driver::Cou
     // Every rank holds the double (the peer is called collectively); only rank 0's data matter.
     auto fluid = std::make_unique<fsi::testing::SpringBackFluid>(solid.wettedNodeCoordinates(), totalForce, kappa);
     fluid->unstableStep = options.unstableStep;
+    fluid->shiftInterface(options.interfaceShift, 0, 0);
     const std::string out = options.out.empty() ? sharedFolder(options.comm, "test") : options.out;
     driver::CoupledDriver driver(options.comm, solid, fluid.get(), coupling, out,
                                  params.relaxationTimes());
@@ -379,4 +381,23 @@ TEST(CoupledDriver, RestartWithoutCheckpointFailsClearly)
     MPI_Barrier(MPI_COMM_WORLD);
     if (worldRank() == 0)
         std::filesystem::remove_all(options.out);
+}
+
+// Non-overlapping interfaces are refused at set-up with a one-line error naming the key to
+// check, and the fluid is told to abort with the same reason.
+TEST(CoupledDriver, NonOverlappingInterfacesAreRefused)
+{
+    RunOptions shifted;
+    shifted.interfaceShift = 0.5; // [m]; the beam's wetted end is 0.1 m across
+    try
+    {
+        runCoupled(elastic(K, G), couplingWith("aitken", 0.5), F0, 1.0, shifted);
+        FAIL() << "disjoint interfaces must be refused";
+    }
+    catch (const std::runtime_error& e)
+    {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("interfaces do not overlap"), std::string::npos) << what;
+        EXPECT_EQ(what.find('\n'), std::string::npos) << "one line: " << what;
+    }
 }
