@@ -93,6 +93,7 @@ void CheckpointStore::write(const DriverState& d, const fe::CommittedState& soli
             w.putText("accelerator_type", d.accelerator.type);
             w.put("accelerator_sizes", toDoubles(d.accelerator.sizes));
             w.put("accelerator_values", d.accelerator.values);
+            w.put("relaxation_scale", d.relaxationScale);
             w.put("accepted_times", d.acceptedTimes);
             w.put("totals_int", std::vector<int>{d.couplingIterations, d.fluidIterations, d.factorizations});
             w.put("totals_seconds", std::vector<double>{d.wallSeconds, d.fluidSeconds, d.solidSeconds,
@@ -156,6 +157,7 @@ CheckpointStore::Loaded CheckpointStore::loadLatest() const
         for (double s : r.doubles("accelerator_sizes"))
             d.accelerator.sizes.push_back(static_cast<long>(s));
         d.accelerator.values = r.doubles("accelerator_values");
+        d.relaxationScale = r.scalar("relaxation_scale");
         d.acceptedTimes = r.doubles("accepted_times");
         const auto ti = r.ints("totals_int");
         const auto ts = r.doubles("totals_seconds");

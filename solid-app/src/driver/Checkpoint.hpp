@@ -40,6 +40,7 @@ struct DriverState
     std::vector<double> interfaceDisplacement;         // u_n, wetted nodes [m]
     std::vector<double> previousInterfaceDisplacement; // u_{n-1} [m]
     acceleration::AcceleratorState accelerator;
+    double relaxationScale = 1.0;      // product of the relaxation cures applied so far
     std::vector<double> acceptedTimes; // every accepted level so far [s] (the PVD series)
     // Run totals so far.
     int couplingIterations = 0, fluidIterations = 0, factorizations = 0;

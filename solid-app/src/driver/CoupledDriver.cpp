@@ -132,6 +132,7 @@ struct CoupledDriver::Impl
     Attempt attemptLevel(int level, double time, double dt, bool usePredictor, LevelRecord& record,
                          RunSummary& summary, bool verbose);
     std::string cure(Outcome outcome, TimeSchedule& schedule);
+    void makeScaledAccelerator();
     DriverState state(const LevelRecord& r, double wallSeconds, const RunSummary& summary) const;
     void writeLevel(const LevelRecord& r, const Eigen::VectorXd& u, const Eigen::VectorXd& f);
     double sectionAngle() const;
@@ -239,8 +240,12 @@ void CoupledDriver::Impl::keepLogRowsUpTo(int level)
         std::getline(in, line);
         kept = line + "\n";
         while (std::getline(in, line))
-            if (!line.empty() && std::stoi(line.substr(0, line.find(','))) <= level)
+        {
+            const std::string first = line.substr(0, line.find(','));
+            if (!first.empty() && first.find_first_not_of("0123456789") == std::string::npos &&
+                std::stoi(first) <= level)
                 kept += line + "\n";
+        }
         in.close();
         std::ofstream(file + ".tmp") << kept;
         std::filesystem::rename(file + ".tmp", file);
@@ -425,6 +430,17 @@ CoupledDriver::Impl::Attempt CoupledDriver::Impl::attemptLevel(int level, double
     return {Outcome::Capped, s.str()};
 }
 
+// A fresh accelerator of the configured type with its relaxation scaled by relaxationScale.
+void CoupledDriver::Impl::makeScaledAccelerator()
+{
+    auto a = params.acceleration;
+    a.constant.relaxation *= relaxationScale;
+    a.aitken.initialRelaxation *= relaxationScale;
+    a.aitken.maxRelaxation = std::max(a.aitken.minRelaxation, a.aitken.maxRelaxation * relaxationScale);
+    a.iqnIls.initialRelaxation *= relaxationScale;
+    accelerator = acceleration::makeAccelerator(a);
+}
+
 // Applies the cure for a failed attempt and says what it did; empty when there is none.
 std::string CoupledDriver::Impl::cure(Outcome outcome, TimeSchedule& schedule)
 {
@@ -441,12 +457,7 @@ std::string CoupledDriver::Impl::cure(Outcome outcome, TimeSchedule& schedule)
         // Level 0 (or no step left to cut): a wild iterate may have caused it; relax harder.
     }
     relaxationScale *= params.recovery.relaxationFactor;
-    auto a = params.acceleration;
-    a.constant.relaxation *= relaxationScale;
-    a.aitken.initialRelaxation *= relaxationScale;
-    a.aitken.maxRelaxation = std::max(a.aitken.minRelaxation, a.aitken.maxRelaxation * relaxationScale);
-    a.iqnIls.initialRelaxation *= relaxationScale;
-    accelerator = acceleration::makeAccelerator(a);
+    makeScaledAccelerator();
     std::ostringstream s;
     s << "redoing the level from its start value with a fresh " << accelerator->name()
       << " accelerator, initial relaxation x" << relaxationScale << " (kept for the rest of the run)";
@@ -463,6 +474,7 @@ DriverState CoupledDriver::Impl::state(const LevelRecord& r, double wallSeconds,
     d.previousInterfaceDisplacement.assign(uBeforeLast.data(), uBeforeLast.data() + n);
     if (rank == 0)
         d.accelerator = accelerator->saveState();
+    d.relaxationScale = relaxationScale;
     d.acceptedTimes = acceptedTimes;
     d.couplingIterations = summary.couplingIterations;
     d.fluidIterations = summary.fluidIterations;
@@ -520,6 +532,9 @@ RunSummary CoupledDriver::run()
                                          " wetted nodes, this mesh " + std::to_string(n / 3) +
                                          " (same mesh as the checkpointed run?)");
             m.solid.restoreCommittedState(saved->solid);
+            m.relaxationScale = d.relaxationScale;
+            if (m.relaxationScale != 1.0)
+                m.makeScaledAccelerator();
             if (m.rank == 0)
                 m.accelerator->loadState(d.accelerator);
             schedule.resume(d.level, d.time, d.lastStep);
