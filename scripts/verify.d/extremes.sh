@@ -7,8 +7,9 @@
 #   Prony tau = 1e-6 ... 1e8 s against dt = 1e-3 ... 1e3 s (creep of a cube: the response must
 #   stay between the instantaneous and the long-term elastic ones);
 #   single-level load jumps (0 -> a large load in one level);
-#   coupled: nominal, E x0.01 / x0.1 / x100, nu 0.499, inflow x0.1 / x5, Prony tau small and
-#   large against the level steps, a jump to a very soft relaxed beam in one level.
+#   coupled: nominal, E x0.01 / x0.1 / x100, nu 0.499, inflow x0.1 / x5, gravity on the beam
+#   switched on in one level (2 and 20 m/s^2), Prony tau small and large against the level
+#   steps, a jump to a very soft relaxed beam in one level.
 # Every case runs under a hard wall-clock limit (a hang is a failure) and is classified as
 #   converged  exit 0 and finite results (and, for the creep cases, inside the elastic bounds);
 #   diagnosed  non-zero exit with an `error:` line naming the failed check, nothing non-finite
@@ -24,7 +25,8 @@
 #        scripts/verify.d/extremes.sh [options] (directly; what CTest does)
 #   --quick            a small fast subset (about a minute): 7 solid cases + nominal FSI1
 #   --solid-only       skip the coupled cases (no fluid-app / OpenFOAM needed)
-#   --only REGEX       run only the cases whose name matches REGEX (grep -E)
+#   --only REGEX       run only the cases whose name matches REGEX (grep -E); through
+#                      scripts/verify keep a creep case in (the plot needs a reference row)
 #   --out DIR          results folder (default $FSI_VERIFY_DIR, else verification/extremes)
 #   --work DIR         run folders, one per case (default runs/extremes; wiped per case)
 #   --timeout S        wall-clock limit of a solid case [s] (default 300)
@@ -54,7 +56,7 @@ while [ $# -gt 0 ]; do
     --timeout) t_solid=${2:?--timeout needs seconds}; shift 2 ;;
     --coupled-timeout) t_coupled=${2:?--coupled-timeout needs seconds}; shift 2 ;;
     --list) list=1; shift ;;
-    -h|--help) sed -n '2,38p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) awk 'NR > 2 && !/^#/ {exit} NR > 2 {sub(/^# ?/, ""); print}' "$0"; exit 0 ;;
     *) echo "error: extremes.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -195,21 +197,29 @@ EOF
 # Cantilever 2 x 0.1 x 0.1 m (Tet10 n = 1: 1 x 1 x 20 boxes; Hex20 n = 2), total-lagrangian.
 # cantilever NAME EXPECT ELEM LAW E NU FORCE_VECTOR [JUMP]
 #   JUMP=jump: levels t = 0 (load factor 0) and t = 1 (factor 1): the whole load in one level.
+#   KIN (default total-lagrangian) and RTOL (newton.residual_tolerance, with
+#   absolute_tolerance 1e-12; default: the solver's) may be set for the call.
 cantilever() {
   local name=$1 expect=$2 elem=$3 law=$4 E=$5 nu=$6 force=$7 jump=${8:-} el time=''
+  local kin=${KIN:-total-lagrangian} newton='' tol=''
+  if [ -n "${RTOL:-}" ]; then
+    newton="  newton: {residual_tolerance: $RTOL, absolute_tolerance: 1.0e-12}"
+    tol=", Newton tolerance $RTOL relative + 1e-12 N"
+  fi
   [ "$elem" = hex ] && el=Hex20 || el=Tet10
   local what="one static level"
   if [ "$jump" = jump ]; then
     time="  time: {dt: 1.0, end: 1.0, load_factor: [[0.0, 0.0], [1.0, 1.0]]}"
     what="levels: 0 load, then the full load in one level"
   fi
-  begin "$name" solid "$expect" "cantilever 2x0.1x0.1 m $el, $law, total-lagrangian, E=$E Pa, nu=$nu, tip force [$force] N; $what" || return 0
+  begin "$name" solid "$expect" "cantilever 2x0.1x0.1 m $el, $law, $kin, E=$E Pa, nu=$nu, tip force [$force] N$tol; $what" || return 0
   make_meshes
   cat > "$work/$name/case.yaml" << EOF
 solid:
   mesh: {file: $mesh_dir/cant-$elem.msh, volume: solid, clamped: [clamped]}
   material: {type: $law, E: $E, nu: $nu}
-  kinematics: total-lagrangian
+  kinematics: $kin
+$newton
   loads:
     forces:
       - {surface: tip, total: [$force]}
@@ -269,7 +279,7 @@ EOF
 
 # Coupled FSI1 coarse in a copy of cases/turek-hron-fsi1; the copy's configs are patched.
 # fsi1 NAME EXPECT PARAMS PATCH-ARGS... -- RUN.SH-ARGS...
-#   patch args: E=X nu=X U=FACTOR gamma=X tau=X (E, nu, gamma, tau on the config run.sh uses)
+#   patch args: E=X nu=X gamma=X tau=X gravity=G (on the config run.sh uses), U=FACTOR (inflow)
 fsi1() {
   local name=$1 expect=$2 params=$3 d args=() patches=() material=elastic cfg
   shift 3
@@ -314,6 +324,10 @@ for E in 1e3 1e5 1e7 1e9 1e11; do
     cantilever "E$E-cant-$elem" "$expect" "$elem" linear-elastic "$E" 0.3 "0.0, -100.0, 0.0"
   done
 done
+# stiff and lightly loaded, with the Newton tolerances of cases/turek-hron-fsi1 (1e-10 relative,
+# 1e-12 N): strains of 1e-8, a linear problem in the small-strain case
+KIN=small-strain RTOL=1.0e-10 cantilever "E1e11-P0.1-tight-ss" converged hex linear-elastic 1e11 0.3 "0.0, -0.1, 0.0"
+RTOL=1.0e-10 cantilever "E1e11-P0.1-tight-tl" converged hex linear-elastic 1e11 0.3 "0.0, -0.1, 0.0"
 # a very soft bar pushed axially: St Venant-Kirchhoff has no compressive state beyond
 # P/(EA) = 0.19 (limit point at stretch 1/sqrt 3), neo-Hooke has; plus Euler buckling
 cantilever "E1e3-compress-svk" any tet linear-elastic 1e3 0.3 "-10.0, 0.0, 0.0"
@@ -334,6 +348,11 @@ if [ "$solid_only" = 0 ]; then
   fsi1 fsi1-nu0.499 any "nu = 0.499 (E = 1.4e6 Pa)" nu=0.499
   fsi1 fsi1-U0.1 converged "inflow x0.1 (Ubar 0.02 m/s, Re 2)" U=0.1
   fsi1 fsi1-U5 any "inflow x5 (Ubar 1 m/s, Re 100: unsteady in reality; steady SIMPLE)" U=5
+  # gravity on the beam (rho 1000 kg/m^3) switched on in the single level, on top of the flow:
+  # 2 m/s^2 (CSM1's load: a few cm), 20 m/s^2 (the beam would reach the channel wall: the fluid
+  # mesh cannot follow, the fluid's mesh-quality check must end the run)
+  fsi1 fsi1-gravity2 any "gravity 2 m/s^2 on the beam in one level (CSM1 load) + the flow" gravity=2
+  fsi1 fsi1-gravity20 diagnosed "gravity 20 m/s^2 on the beam in one level: the beam would reach the channel wall" gravity=20
   fsi1 fsi1-visco-tau1e-6 any "Prony gamma 0.5, tau=1e-6 s; levels 0, 1e-3, 1, 1e3 s" tau=1e-6 -- \
     --material viscoelastic --times 0,1e-3,1,1e3
   fsi1 fsi1-visco-tau1e8 any "Prony gamma 0.5, tau=1e8 s; levels 0, 1e-3, 1, 1e3 s" tau=1e8 -- \
