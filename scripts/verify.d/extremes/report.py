@@ -190,7 +190,8 @@ def classify(d):
         fluid_err = first_error(logs["log.fluid"])
         error = solid_err or fluid_err or first_error(logs["log.mpirun"]) or \
             first_error(logs["log.run"], skip=("the coupled run failed",))
-        if fluid_err and solid_err and solid_err[len("error:"):].strip()[:80] not in fluid_err:
+        core = lambda e: e[len("error:"):].strip()[:80]  # noqa: E731
+        if fluid_err and solid_err and core(solid_err) not in fluid_err and core(fluid_err) not in solid_err:
             error += " || fluid: " + fluid_err
         nlev = len(hist or [])
         nan_files = [("results/history.csv", non_finite(hist))]
