@@ -18,6 +18,9 @@
 #   HYDROFOIL_RUNS     folder of the mesh-LEVEL/ and run-LEVEL/ folders (default $FSI_VERIFY_DIR)
 #   HYDROFOIL_REUSE=1  keep a level's mesh (mesh-LEVEL/mesh/mesh-summary.txt) and finished run
 #                      (run-LEVEL/results/baseline/history.csv) instead of redoing them
+#   HYDROFOIL_TIMEOUT  longest wait of either program for the other [s] (default 3600: on fine
+#                      the solid's set-up, RBF mapping of 49 k wetted nodes and the first
+#                      factorization, took longer than run.sh's default 900 s under load)
 #   HYDROFOIL_MAX_ERROR  if set (e.g. 0.10): fail unless every quantity of the second-finest
 #                      level is within this relative error of the finest (the CTest check)
 set -euo pipefail
@@ -29,6 +32,7 @@ export PATH=${FSI_BUILD_DIR:-$root/build}/bin:$PATH
 levels=${HYDROFOIL_LEVELS:-"coarse medium fine"}
 runs=${HYDROFOIL_RUNS:-$FSI_VERIFY_DIR}
 reuse=${HYDROFOIL_REUSE:-0}
+timeout=${HYDROFOIL_TIMEOUT:-3600}
 npf=2 nps=1
 csv=$FSI_VERIFY_DIR/error_vs_runtime.csv
 raw=$FSI_VERIFY_DIR/levels.csv
@@ -53,7 +57,7 @@ for level in $levels; do
     cp -r "$case_dir" "$r"
     cut -d' ' -f1 /proc/loadavg > "$r/load1"
     { time (cd "$r" && ./run.sh --preset "$level" --material baseline --np-fluid "$npf" --np-solid "$nps" \
-        --mesh-from "$m" > log.run 2>&1); } 2> "$r/time.run" ||
+        --timeout "$timeout" --mesh-from "$m" > log.run 2>&1); } 2> "$r/time.run" ||
       { echo "error: hydrofoil $level run failed, see $r/log.run" >&2; tail -5 "$r/log.run" >&2; exit 1; }
   fi
   cells=$(sed -n 's/^fluid: cells \([0-9]*\).*/\1/p' "$m/mesh/mesh-summary.txt" | tail -n 1)
