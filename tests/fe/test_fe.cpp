@@ -320,3 +320,22 @@ TEST(Newton, StallIsReportedNotAccepted)
     EXPECT_NO_THROW(solver.acceptLevel());
     std::printf("stalled Newton reported: %s\n", report.message.c_str());
 }
+
+// Strains come from the displacement gradient, not from F - I: a strain of 1e-12 keeps its
+// digits (F - I would leave about 4 of them), in both kinematics.
+TEST(ElementKernel, TinyStrainsKeepTheirDigits)
+{
+    Eigen::Matrix3d H;
+    H << 1.234567890123e-12, 2.0e-13, -3.0e-13, 4.0e-13, -5.55e-12, 6.0e-13, 7.0e-13, 8.0e-13, 9.87e-12;
+    for (auto kin : {material::Kinematics::SmallStrain, material::Kinematics::TotalLagrangian})
+    {
+        const auto e = fe::strainFromH(H, kin);
+        const Eigen::Matrix3d sym = 0.5 * (H + H.transpose());
+        const Eigen::Matrix3d exact =
+            kin == material::Kinematics::SmallStrain ? sym : Eigen::Matrix3d(sym + 0.5 * H.transpose() * H);
+        EXPECT_NEAR(e(0), exact(0, 0), 1e-15 * std::abs(exact(0, 0)));
+        EXPECT_NEAR(e(1), exact(1, 1), 1e-15 * std::abs(exact(1, 1)));
+        EXPECT_NEAR(e(2), exact(2, 2), 1e-15 * std::abs(exact(2, 2)));
+        EXPECT_NEAR(e(3), 2 * exact(0, 1), 1e-15 * std::abs(exact(0, 1)));
+    }
+}

@@ -88,6 +88,7 @@ struct CoupledDriver::Impl
     {
         Outcome outcome = Outcome::Converged;
         std::string diagnosis; // same on every rank
+        int iteration = 0;     // the coupling iteration it ended in
     };
 
     Impl(MPI_Comm c, fe::StructuralSolver& s, FluidPeer* f, CouplingParameters p, std::string out,
@@ -131,7 +132,7 @@ struct CoupledDriver::Impl
     void keepLogRowsUpTo(int level);
     Attempt attemptLevel(int level, double time, double dt, bool usePredictor, LevelRecord& record,
                          RunSummary& summary, bool verbose);
-    std::string cure(Outcome outcome, TimeSchedule& schedule);
+    std::string cure(const Attempt& attempt, TimeSchedule& schedule);
     void makeScaledAccelerator();
     DriverState state(const LevelRecord& r, double wallSeconds, const RunSummary& summary) const;
     void writeLevel(const LevelRecord& r, const Eigen::VectorXd& u, const Eigen::VectorXd& f);
@@ -355,7 +356,7 @@ CoupledDriver::Impl::Attempt CoupledDriver::Impl::attemptLevel(int level, double
         summary.solidSeconds += wallSolid;
         if (!report.converged)
             return {Outcome::SolidFailed, "coupling iteration " + std::to_string(it) +
-                                              ": the structural Newton solve failed: " + report.message};
+                                              ": the structural Newton solve failed: " + report.message, it};
         solverOutput = toVector(solid.wettedNodeDisplacements());
 
         std::string note = report.loadCuts > 0 ? "[cure] solid load sub-stepping x" +
@@ -413,21 +414,21 @@ CoupledDriver::Impl::Attempt CoupledDriver::Impl::attemptLevel(int level, double
         }
         MPI_Bcast(&decision, 1, MPI_INT, 0, comm);
         if (decision == Converged)
-            return {Outcome::Converged, ""};
+            return {Outcome::Converged, "", it};
         if (decision == Diverged)
         {
             int length = static_cast<int>(failure.size());
             MPI_Bcast(&length, 1, MPI_INT, 0, comm);
             failure.resize(length);
             MPI_Bcast(failure.data(), length, MPI_CHAR, 0, comm);
-            return {Outcome::Diverged, "diverged: " + failure};
+            return {Outcome::Diverged, "diverged: " + failure, it};
         }
     }
     MPI_Bcast(&record.residual, 1, MPI_DOUBLE, 0, comm);
     std::ostringstream s;
     s << "did not converge in " << params.maxIterations << " coupling iterations (|r|/sqrt(n) = "
       << record.residual << " m)";
-    return {Outcome::Capped, s.str()};
+    return {Outcome::Capped, s.str(), params.maxIterations};
 }
 
 // A fresh accelerator of the configured type with its relaxation scaled by relaxationScale.
@@ -441,9 +442,11 @@ void CoupledDriver::Impl::makeScaledAccelerator()
     accelerator = acceleration::makeAccelerator(a);
 }
 
-// Applies the cure for a failed attempt and says what it did; empty when there is none.
-std::string CoupledDriver::Impl::cure(Outcome outcome, TimeSchedule& schedule)
+// Applies the cure for a failed attempt and says what it did; empty when none applies (then
+// nothing was changed).
+std::string CoupledDriver::Impl::cure(const Attempt& attempt, TimeSchedule& schedule)
 {
+    const Outcome outcome = attempt.outcome;
     if (outcome == Outcome::SolidFailed)
     {
         const double before = schedule.lastStep();
@@ -455,6 +458,9 @@ std::string CoupledDriver::Impl::cure(Outcome outcome, TimeSchedule& schedule)
             return s.str();
         }
         // Level 0 (or no step left to cut): a wild iterate may have caused it; relax harder.
+        // Not in the first iteration, whose displacement no relaxation has touched yet.
+        if (attempt.iteration <= 1)
+            return {};
     }
     relaxationScale *= params.recovery.relaxationFactor;
     makeScaledAccelerator();
@@ -599,11 +605,15 @@ RunSummary CoupledDriver::run()
             if (retries < m.params.recovery.maxRetries)
             {
                 m.solid.rejectLevel();
-                const std::string cure = m.cure(attempt.outcome, schedule);
-                ++retries;
-                m.say("[cure " + std::to_string(retries) + "/" + std::to_string(m.params.recovery.maxRetries) +
-                      "] " + where.str() + attempt.diagnosis + " -> " + cure);
-                continue;
+                const std::string cure = m.cure(attempt, schedule);
+                if (!cure.empty())
+                {
+                    ++retries;
+                    m.say("[cure " + std::to_string(retries) + "/" + std::to_string(m.params.recovery.maxRetries) +
+                          "] " + where.str() + attempt.diagnosis + " -> " + cure);
+                    continue;
+                }
+                m.say("[cure] " + where.str() + "no automatic cure applies to: " + attempt.diagnosis);
             }
             std::string fix;
             switch (attempt.outcome)

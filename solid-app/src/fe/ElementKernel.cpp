@@ -33,21 +33,21 @@ double appendCellQuadrature(mesh::CellType type, const Eigen::Matrix3Xd& X,
     return minDet;
 }
 
-Eigen::Matrix3d deformationGradient(const CellQuadrature& cq, int q, const Eigen::Matrix3Xd& u)
+Eigen::Matrix3d displacementGradient(const CellQuadrature& cq, int q, const Eigen::Matrix3Xd& u)
 {
-    return Eigen::Matrix3d::Identity() + u * cq.dNdX(q);
+    return u * cq.dNdX(q);
 }
 
-Vector6 strainFromF(const Eigen::Matrix3d& F, Kinematics kinematics)
+Eigen::Matrix3d deformationGradient(const CellQuadrature& cq, int q, const Eigen::Matrix3Xd& u)
 {
-    Eigen::Matrix3d e;
-    if (kinematics == Kinematics::SmallStrain)
-    {
-        const Eigen::Matrix3d H = F - Eigen::Matrix3d::Identity();
-        e = 0.5 * (H + H.transpose());
-    }
-    else
-        e = 0.5 * (F.transpose() * F - Eigen::Matrix3d::Identity());
+    return Eigen::Matrix3d::Identity() + displacementGradient(cq, q, u);
+}
+
+Vector6 strainFromH(const Eigen::Matrix3d& H, Kinematics kinematics)
+{
+    Eigen::Matrix3d e = 0.5 * (H + H.transpose());
+    if (kinematics != Kinematics::SmallStrain)
+        e += 0.5 * H.transpose() * H;
     Vector6 v;
     v << e(0, 0), e(1, 1), e(2, 2), 2 * e(0, 1), 2 * e(1, 2), 2 * e(0, 2);
     return v;
@@ -90,11 +90,11 @@ void cellResponse(const CellQuadrature& cq, const Eigen::Matrix3Xd& u,
     for (int q = 0; q < cq.numPoints; ++q)
     {
         const auto g = cq.dNdX(q);
+        const Eigen::Matrix3d H = displacementGradient(cq, q, u);
         const Eigen::Matrix3d F = kinematics == Kinematics::SmallStrain
                                       ? Eigen::Matrix3d::Identity()
-                                      : deformationGradient(cq, q, u);
-        const Vector6 strain = strainFromF(
-            kinematics == Kinematics::SmallStrain ? deformationGradient(cq, q, u) : F, kinematics);
+                                      : Eigen::Matrix3d(Eigen::Matrix3d::Identity() + H);
+        const Vector6 strain = strainFromH(H, kinematics);
         law.evaluate(strain, step, hs ? history + q * hs : nullptr, stress, D);
         for (int a = 0; a < n; ++a)
             for (int i = 0; i < 3; ++i)

@@ -33,10 +33,14 @@ struct CellQuadrature
 double appendCellQuadrature(mesh::CellType type, const Eigen::Matrix3Xd& X,
                             std::vector<double>& out);
 
-// Deformation gradient (F = I + u dNdX) at a point; u is 3 x n cell displacements [m].
+// Displacement gradient H = u dNdX at a point; u is 3 x n cell displacements [m].
+Eigen::Matrix3d displacementGradient(const CellQuadrature& cq, int q, const Eigen::Matrix3Xd& u);
+// Deformation gradient F = I + H.
 Eigen::Matrix3d deformationGradient(const CellQuadrature& cq, int q, const Eigen::Matrix3Xd& u);
-// Strain measure of the kinematics (engineering shear) from F.
-material::Vector6 strainFromF(const Eigen::Matrix3d& F, material::Kinematics kinematics);
+// Strain measure of the kinematics (engineering shear) from H, never from F: F - I would lose
+// the digits of small strains (stiff structures: strains of 1e-9 keep 7 digits only).
+//   small strain: sym(H);  total Lagrangian: 0.5 (H + H^T + H^T H) (Green-Lagrange).
+material::Vector6 strainFromH(const Eigen::Matrix3d& H, material::Kinematics kinematics);
 // Cauchy stress (Voigt, tensor shear) from the material stress of the kinematics.
 material::Vector6 cauchyFromMaterialStress(const material::Vector6& stress,
                                            const Eigen::Matrix3d& F,

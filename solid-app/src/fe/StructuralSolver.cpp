@@ -371,8 +371,11 @@ bool StructuralSolver::newton(const std::vector<double>& fext, double factor,
             return true;
         if (it >= nw.maxIterations)
         {
-            report.message = "Newton stalled: " + std::to_string(it) + " iterations, residual " +
-                             std::to_string(norm) + " N";
+            char text[160];
+            std::snprintf(text, sizeof text,
+                          "Newton stalled: %d iterations, residual %.3e N above the tolerance %.3e N",
+                          it, norm, nw.residualTolerance * ref + nw.absoluteTolerance);
+            report.message = text;
             return false;
         }
         // solve K du = R on the free dofs (rhs on rank 0, solution on all ranks)
@@ -439,7 +442,9 @@ bool StructuralSolver::newton(const std::vector<double>& fext, double factor,
         // divergence guard: a residual exploding by orders of magnitude is not progress
         if (trialNorm > 1e8 * std::max(norm, nw.absoluteTolerance) && trialNorm > ref)
         {
-            report.message = "Newton diverged: residual " + std::to_string(trialNorm) + " N";
+            char text[96];
+            std::snprintf(text, sizeof text, "Newton diverged: residual %.3e N", trialNorm);
+            report.message = text;
             return false;
         }
         u.swap(trial);
@@ -557,7 +562,7 @@ void StructuralSolver::acceptLevel()
             for (int q = 0; q < cq.numPoints; ++q)
             {
                 const Vector6 strain =
-                    strainFromF(deformationGradient(cq, q, ue), problem_.kinematics);
+                    strainFromH(displacementGradient(cq, q, ue), problem_.kinematics);
                 const std::size_t p = static_cast<std::size_t>(pointOffset_[k] + q) * hs;
                 law_.updateHistory(strain, step_, committedHistory_.data() + p, next.data() + p);
             }
@@ -672,10 +677,11 @@ void StructuralSolver::cauchyStress(std::vector<Vector6>& nodal,
         double volume = 0.0;
         for (int q = 0; q < cq.numPoints; ++q)
         {
-            const Eigen::Matrix3d F = deformationGradient(cq, q, ue);
+            const Eigen::Matrix3d H = displacementGradient(cq, q, ue);
+            const Eigen::Matrix3d F = Eigen::Matrix3d::Identity() + H;
             try
             {
-                law_.evaluate(strainFromF(F, problem_.kinematics), step_,
+                law_.evaluate(strainFromH(H, problem_.kinematics), step_,
                               hs ? committedHistory_.data() + (pointOffset_[k] + q) * hs : nullptr,
                               stress, D);
             }
