@@ -17,6 +17,12 @@
 #   --end SECONDS                           last time level of the viscoelastic run (3600)
 #   --timeout SECONDS                       longest wait for the peer (default 900)
 #   --mesh-from DIR                         reuse the meshes of an earlier run folder (DIR/mesh)
+#   --restart                               continue an interrupted run in this folder (same
+#                                           options): finished runs are kept, an interrupted one
+#                                           continues from results/<run>/checkpoint/latest
+#                                           (scripts/fsi-restart-fluid + --restart), a run that
+#                                           never started starts; logs of earlier parts are kept
+#                                           as log.<run>.partN
 # Writes results/: history.csv (viscoelastic, one row per level), baseline/, relaxed/ and visco/
 # (solid-app outputs: coupling.csv, history.csv, interface/, solid_*.vtu + solid.pvd), summary.csv and the
 # PNG plots; the fluid fields of accepted levels are in fluid-*/ (OpenFOAM time folders).
@@ -24,7 +30,7 @@ set -euo pipefail
 : "${FSI_ROOT:?run through ./scripts/run cases/hydrofoil (FSI_ROOT unset)}"
 source "$FSI_ROOT/scripts/env.sh"
 
-preset=coarse material=both npf=2 nps=1 launch=mpmd tc=0.12 cli=0.5 end="" timeout=900 meshFrom=""
+preset=coarse material=both npf=2 nps=1 launch=mpmd tc=0.12 cli=0.5 end="" timeout=900 meshFrom="" restart=0
 die() { echo "error: hydrofoil/run.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -38,7 +44,8 @@ while [ $# -gt 0 ]; do
     --end) end=$2; shift 2 ;;
     --timeout) timeout=$2; shift 2 ;;
     --mesh-from) meshFrom=$2; shift 2 ;;
-    -h|--help) sed -n '3,22p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    --restart) restart=1; shift ;;
+    -h|--help) sed -n '3,28p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) die "unknown option '$1' (see --help)" ;;
   esac
 done
@@ -51,7 +58,10 @@ run=$PWD
 log() { echo "[hydrofoil $(date +%H:%M:%S)] $*"; }
 start=$(date +%s)
 
-if [ -n "$meshFrom" ]; then
+if [ "$restart" = 1 ]; then
+  [ -f "$run/mesh/mesh-summary.txt" ] || die "--restart: no mesh/ in $run (start the run without --restart)"
+  log "restart: keeping the meshes in $run/mesh"
+elif [ -n "$meshFrom" ]; then
   [ -f "$meshFrom/mesh/mesh-summary.txt" ] || die "--mesh-from $meshFrom: no mesh/mesh-summary.txt there"
   log "reusing the meshes of $meshFrom"
   rm -rf "$run/mesh" && cp -r "$meshFrom/mesh" "$run/mesh"
@@ -75,26 +85,39 @@ mkdir -p "$run/results"
 for m in "${runs[@]}"; do
   short=$m; [ "$m" = viscoelastic ] && short=visco
   fluid=$run/fluid-$short
-  rm -rf "$fluid"
-  cp -r "$run/mesh/fluid" "$fluid"
-  rm -rf "$fluid"/processor*
-  cp "$run/fluid/system/fsiDict" "$fluid/system/fsiDict"
-  parallel=""
-  if [ "$npf" -gt 1 ]; then
-    foamDictionary "$fluid/system/decomposeParDict" -entry numberOfSubdomains -set "$npf" >/dev/null
-    foamDictionary "$fluid/system/decomposeParDict" -entry method -set hierarchical >/dev/null
-    (cd "$fluid" && decomposePar -force > log.decomposePar 2>&1) || die "decomposePar failed ($fluid/log.decomposePar)"
-    parallel=-parallel
+  out=$run/results/$short
+  resume=()
+  if [ "$restart" = 1 ] && [ -f "$out/summary.csv" ]; then
+    log "$m: finished before the restart, kept"
+    continue
+  elif [ "$restart" = 1 ] && [ -f "$out/checkpoint/latest" ]; then
+    log "$m: continuing from $(sed -n 's/^folder //p' "$out/checkpoint/latest") of $out/checkpoint"
+    "$FSI_ROOT/scripts/fsi-restart-fluid" "$fluid" "$out"
+    k=1; while [ -e "$run/log.$short.part$k" ]; do k=$((k + 1)); done
+    if [ -e "$run/log.$short" ]; then mv "$run/log.$short" "$run/log.$short.part$k"; fi
+    resume=(--restart)
   fi
+  if [ ${#resume[@]} -eq 0 ]; then
+    rm -rf "$fluid"
+    cp -r "$run/mesh/fluid" "$fluid"
+    rm -rf "$fluid"/processor*
+    cp "$run/fluid/system/fsiDict" "$fluid/system/fsiDict"
+    if [ "$npf" -gt 1 ]; then
+      foamDictionary "$fluid/system/decomposeParDict" -entry numberOfSubdomains -set "$npf" >/dev/null
+      foamDictionary "$fluid/system/decomposeParDict" -entry method -set hierarchical >/dev/null
+      (cd "$fluid" && decomposePar -force > log.decomposePar 2>&1) || die "decomposePar failed ($fluid/log.decomposePar)"
+    fi
+  fi
+  parallel=""
+  [ "$npf" -gt 1 ] && parallel=-parallel
   cfg=$run/$m.yaml
   sed "s|@MESH@|$solidMesh|" "$run/solid/$m.yaml" > "$cfg"
   if [ -n "$end" ] && [ "$m" = viscoelastic ]; then
     sed -i "s|^    end: .*|    end: $end|; s|^    hit: .*|    hit: []|" "$cfg"
   fi
-  out=$run/results/$short
   log "$m: fluid $npf rank(s), solid $nps rank(s), launch $launch; log in log.$short"
-  fluidCmd=(fluid-app -case "$fluid" $parallel --launch "$launch" --comm-timeout "$timeout")
-  solidCmd=(solid-app "$cfg" --out "$out" --launch "$launch" --comm-timeout "$timeout")
+  fluidCmd=(fluid-app -case "$fluid" $parallel "${resume[@]/--/-}" --launch "$launch" --comm-timeout "$timeout")
+  solidCmd=(solid-app "$cfg" --out "$out" "${resume[@]}" --launch "$launch" --comm-timeout "$timeout")
   if [ "$launch" = port ]; then
     fluidCmd+=(--port-file "$run/fsi-$short.port"); solidCmd+=(--port-file "$run/fsi-$short.port")
     cmd=("$FSI_ROOT/scripts/launch-port" -np "$npf" "${fluidCmd[@]}" : -np "$nps" "${solidCmd[@]}")
