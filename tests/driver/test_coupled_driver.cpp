@@ -157,6 +157,21 @@ CoupledResult runCoupled(const material::MaterialParameters& params, driver::Cou
 
 constexpr double K = 2.0e6, G = 1.0e6, F0 = 10.0; // [Pa], [Pa], [N]
 
+// Prony solid with the elastic K, long-term G and the given gamma_i (long-term basis), tau_i [s].
+material::MaterialParameters viscoelastic(std::vector<double> gammas, std::vector<double> taus)
+{
+    material::MaterialParameters p;
+    p.type = "viscoelastic";
+    p.bulkModulus = K;
+    p.shearModulus = G; // long-term
+    p.modulusBasis = "long-term";
+    p.pronyConvention = "long-term-gamma";
+    p.pronyCoefficients = std::move(gammas);
+    p.pronyTimes = std::move(taus);
+    p.validate();
+    return p;
+}
+
 } // namespace
 
 // Plain iteration has the contraction factor -1.5: omega = 1 diverges, Aitken converges to the
@@ -204,15 +219,7 @@ TEST(CoupledDriver, IqnIlsSolvesAnAffineRankOneProblemInFewIterations)
 // after the longest relaxation time the long-term one (bulk elastic, shear relaxes).
 TEST(CoupledDriver, ViscoelasticLevelsSpanInstantaneousAndLongTermResponses)
 {
-    material::MaterialParameters visco;
-    visco.type = "viscoelastic";
-    visco.bulkModulus = K;
-    visco.shearModulus = G; // long-term
-    visco.modulusBasis = "long-term";
-    visco.pronyConvention = "long-term-gamma";
-    visco.pronyCoefficients = {0.6, 0.4};
-    visco.pronyTimes = {0.1, 10.0};
-    visco.validate();
+    const auto visco = viscoelastic({0.6, 0.4}, {0.1, 10.0});
 
     const double U1inst = meanTipResponse(elastic(K, G * 2.0), F0);
     const double U1long = meanTipResponse(elastic(K, G), F0);
@@ -258,15 +265,7 @@ TEST(CoupledDriver, DivergingLevelIsRedoneWithStrongerRelaxation)
 // still lands on every planned time, ending in the same state as a run with small steps.
 TEST(CoupledDriver, FailedStructuralSolveIsRedoneWithSmallerTimeStep)
 {
-    material::MaterialParameters visco;
-    visco.type = "viscoelastic";
-    visco.bulkModulus = K;
-    visco.shearModulus = G;
-    visco.modulusBasis = "long-term";
-    visco.pronyConvention = "long-term-gamma";
-    visco.pronyCoefficients = {0.6};
-    visco.pronyTimes = {1.0};
-    visco.validate();
+    const auto visco = viscoelastic({0.6}, {1.0});
     const double kappa = 0.5 / meanTipResponse(elastic(K, G), F0);
     auto coupling = couplingWith("aitken", 0.5);
     coupling.time.type = "list";
@@ -300,15 +299,7 @@ TEST(CoupledDriver, FailedStructuralSolveIsRedoneWithSmallerTimeStep)
 // runs on 1 rank (the solid history is keyed by cell, not by rank).
 TEST(CoupledDriver, RestartReproducesTheUninterruptedRun)
 {
-    material::MaterialParameters visco;
-    visco.type = "viscoelastic";
-    visco.bulkModulus = K;
-    visco.shearModulus = G;
-    visco.modulusBasis = "long-term";
-    visco.pronyConvention = "long-term-gamma";
-    visco.pronyCoefficients = {0.6, 0.4};
-    visco.pronyTimes = {0.3, 3.0};
-    visco.validate();
+    const auto visco = viscoelastic({0.6, 0.4}, {0.3, 3.0});
     const double kappa = 1.2 / meanTipResponse(elastic(K, G), F0);
     auto coupling = couplingWith("iqn-ils", 0.5);
     coupling.acceleration.iqnIls.reuseLevels = 2;
