@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <stdexcept>
 
@@ -30,8 +31,9 @@ std::vector<double> toDoubles(const std::vector<long>& v)
     return {v.begin(), v.end()};
 }
 
-// Every rank learns whether all succeeded; the first failing rank's message is thrown everywhere.
-void agree(MPI_Comm comm, const std::string& localError)
+} // namespace
+
+void throwIfAnyRankFailed(MPI_Comm comm, const std::string& localError)
 {
     int rank = 0, size = 1;
     MPI_Comm_rank(comm, &rank);
@@ -47,7 +49,6 @@ void agree(MPI_Comm comm, const std::string& localError)
     MPI_Bcast(message.data(), length, MPI_CHAR, first, comm);
     throw std::runtime_error(message);
 }
-} // namespace
 
 void CheckpointParameters::validate() const
 {
@@ -67,12 +68,24 @@ CheckpointStore::CheckpointStore(MPI_Comm comm, std::string folder, int keep)
 void CheckpointStore::write(const DriverState& d, const fe::CommittedState& solid) const
 {
     const fs::path dir = fs::path(folder_) / levelFolderName(d.level);
-    std::string error;
-    try
-    {
-        if (rank_ == 0)
-            fs::create_directories(dir);
-        MPI_Barrier(comm_);
+    // Every step is collective: a rank that fails makes all ranks throw the same message.
+    const auto step = [&](bool allRanks, const std::function<void()>& action) {
+        std::string error;
+        if (allRanks || rank_ == 0)
+        {
+            try
+            {
+                action();
+            }
+            catch (const std::exception& e)
+            {
+                error = std::string("checkpoint: ") + e.what();
+            }
+        }
+        throwIfAnyRankFailed(comm_, error);
+    };
+    step(false, [&] { fs::create_directories(dir); });
+    step(true, [&] {
         io::ArchiveWriter s;
         s.put("ranks", size_);
         s.put("displacement", solid.displacement);
@@ -81,46 +94,40 @@ void CheckpointStore::write(const DriverState& d, const fe::CommittedState& soli
         s.put("cells", solid.cells);
         s.put("history", solid.history);
         s.commit((dir / ("solid_rank_" + std::to_string(rank_) + ".bin")).string());
-        if (rank_ == 0)
-        {
-            io::ArchiveWriter w;
-            w.put("level", d.level);
-            w.put("ranks", size_);
-            w.put("time", d.time);
-            w.put("last_step", d.lastStep);
-            w.put("interface_displacement", d.interfaceDisplacement);
-            w.put("previous_interface_displacement", d.previousInterfaceDisplacement);
-            w.putText("accelerator_type", d.accelerator.type);
-            w.put("accelerator_sizes", toDoubles(d.accelerator.sizes));
-            w.put("accelerator_values", d.accelerator.values);
-            w.put("relaxation_scale", d.relaxationScale);
-            w.put("accepted_times", d.acceptedTimes);
-            w.put("totals_int", std::vector<int>{d.couplingIterations, d.fluidIterations, d.factorizations});
-            w.put("totals_seconds", std::vector<double>{d.wallSeconds, d.fluidSeconds, d.solidSeconds,
-                                                         d.mappingSeconds});
-            w.commit((dir / "driver.bin").string());
-        }
-    }
-    catch (const std::exception& e)
-    {
-        error = std::string("checkpoint: ") + e.what();
-    }
-    agree(comm_, error);
-    if (rank_ != 0)
-        return;
-    std::ostringstream latest;
-    latest.precision(17);
-    latest << "level " << d.level << "\ntime " << d.time << "\nfolder " << levelFolderName(d.level) << "\n";
-    io::writeFileAtomically((fs::path(folder_) / "latest").string(), latest.str());
-    // Prune: keep the newest `keep` level folders.
-    std::vector<fs::path> levels;
-    for (const auto& entry : fs::directory_iterator(folder_))
-        if (entry.is_directory() && entry.path().filename().string().rfind("level_", 0) == 0)
-            levels.push_back(entry.path());
-    std::sort(levels.begin(), levels.end());
-    for (std::size_t i = 0; i + keep_ < levels.size(); ++i)
-        if (levels[i] != dir)
-            fs::remove_all(levels[i]);
+        if (rank_ != 0)
+            return;
+        io::ArchiveWriter w;
+        w.put("level", d.level);
+        w.put("ranks", size_);
+        w.put("time", d.time);
+        w.put("last_step", d.lastStep);
+        w.put("interface_displacement", d.interfaceDisplacement);
+        w.put("previous_interface_displacement", d.previousInterfaceDisplacement);
+        w.putText("accelerator_type", d.accelerator.type);
+        w.put("accelerator_sizes", toDoubles(d.accelerator.sizes));
+        w.put("accelerator_values", d.accelerator.values);
+        w.put("relaxation_scale", d.relaxationScale);
+        w.put("accepted_times", d.acceptedTimes);
+        w.put("totals_int", std::vector<int>{d.couplingIterations, d.fluidIterations, d.factorizations});
+        w.put("totals_seconds", std::vector<double>{d.wallSeconds, d.fluidSeconds, d.solidSeconds,
+                                                     d.mappingSeconds});
+        w.commit((dir / "driver.bin").string());
+    });
+    step(false, [&] {
+        std::ostringstream latest;
+        latest.precision(17);
+        latest << "level " << d.level << "\ntime " << d.time << "\nfolder " << levelFolderName(d.level) << "\n";
+        io::writeFileAtomically((fs::path(folder_) / "latest").string(), latest.str());
+        // Prune: keep the newest `keep` level folders.
+        std::vector<fs::path> levels;
+        for (const auto& entry : fs::directory_iterator(folder_))
+            if (entry.is_directory() && entry.path().filename().string().rfind("level_", 0) == 0)
+                levels.push_back(entry.path());
+        std::sort(levels.begin(), levels.end());
+        for (std::size_t i = 0; i + keep_ < levels.size(); ++i)
+            if (levels[i] != dir)
+                fs::remove_all(levels[i]);
+    });
 }
 
 CheckpointStore::Loaded CheckpointStore::loadLatest() const
@@ -187,7 +194,7 @@ CheckpointStore::Loaded CheckpointStore::loadLatest() const
     {
         error = std::string("restart: ") + e.what();
     }
-    agree(comm_, error);
+    throwIfAnyRankFailed(comm_, error);
     return loaded;
 }
 

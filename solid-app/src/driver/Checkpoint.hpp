@@ -47,6 +47,10 @@ struct DriverState
     double wallSeconds = 0.0, fluidSeconds = 0.0, solidSeconds = 0.0, mappingSeconds = 0.0;
 };
 
+// Collective: throws std::runtime_error on every rank, with the message of the lowest failing
+// rank, when any rank's localError is not empty.
+void throwIfAnyRankFailed(MPI_Comm comm, const std::string& localError);
+
 class CheckpointStore
 {
 public:

@@ -531,6 +531,7 @@ RunSummary CoupledDriver::run()
     if (saved)
     {
         const DriverState& d = saved->driver;
+        std::string error;
         try
         {
             if (static_cast<int>(d.interfaceDisplacement.size()) != n)
@@ -547,7 +548,15 @@ RunSummary CoupledDriver::run()
         }
         catch (const std::exception& e)
         {
-            m.fail(saved->folder + ": " + e.what());
+            error = saved->folder + ": " + e.what();
+        }
+        try
+        {
+            throwIfAnyRankFailed(m.comm, error); // a rank-local failure must stop every rank
+        }
+        catch (const std::exception& e)
+        {
+            m.fail(e.what());
         }
         m.uLast = toVector(d.interfaceDisplacement);
         m.uBeforeLast = toVector(d.previousInterfaceDisplacement);
