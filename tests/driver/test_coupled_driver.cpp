@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -313,6 +314,20 @@ TEST(CoupledDriver, RestartReproducesTheUninterruptedRun)
     auto shortened = coupling;
     shortened.time.times = {0.0, 0.1, 0.4};
     runCoupled(visco, shortened, F0, kappa, first);
+    if (worldRank() == 0)
+    {
+        // keep: 2 -> the folders of levels 1 and 2; `latest` names level 2.
+        std::vector<std::string> kept;
+        for (const auto& e : std::filesystem::directory_iterator(first.out + "/checkpoint"))
+            if (e.is_directory())
+                kept.push_back(e.path().filename().string());
+        std::sort(kept.begin(), kept.end());
+        EXPECT_EQ(kept, (std::vector<std::string>{"level_000001", "level_000002"}));
+        std::ifstream latest(first.out + "/checkpoint/latest");
+        std::string key, value;
+        latest >> key >> value;
+        EXPECT_EQ(key + " " + value, "level 2");
+    }
 
     RunOptions second = first;
     second.restart = true;
