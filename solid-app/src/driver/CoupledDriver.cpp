@@ -106,16 +106,17 @@ struct CoupledDriver::Impl
         throw std::runtime_error(reason);
     }
 
-    // Broadcasts rank 0's error text; fails on every rank if it is not empty.
-    void failIfRootFailed(std::string error)
+    // Collective: fails on every rank (fluid told) when any rank's localError is not empty.
+    void failIfAnyRankFailed(const std::string& localError)
     {
-        int len = static_cast<int>(error.size());
-        MPI_Bcast(&len, 1, MPI_INT, 0, comm);
-        if (len == 0)
-            return;
-        error.resize(len);
-        MPI_Bcast(error.data(), len, MPI_CHAR, 0, comm);
-        fail(error);
+        try
+        {
+            throwIfAnyRankFailed(comm, localError);
+        }
+        catch (const std::exception& e)
+        {
+            fail(e.what());
+        }
     }
 
     void say(const std::string& line) const
@@ -196,7 +197,7 @@ void CoupledDriver::Impl::setUp(int restartLevel)
             error = std::string("interface set-up: ") + e.what();
         }
     }
-    failIfRootFailed(error);
+    failIfAnyRankFailed(error);
     if (rank != 0)
         return;
     const auto& fi = fluid->interface();
@@ -550,14 +551,7 @@ RunSummary CoupledDriver::run()
         {
             error = saved->folder + ": " + e.what();
         }
-        try
-        {
-            throwIfAnyRankFailed(m.comm, error); // a rank-local failure must stop every rank
-        }
-        catch (const std::exception& e)
-        {
-            m.fail(e.what());
-        }
+        m.failIfAnyRankFailed(error); // a rank-local failure must stop every rank
         m.uLast = toVector(d.interfaceDisplacement);
         m.uBeforeLast = toVector(d.previousInterfaceDisplacement);
         m.dtLast = d.lastStep;
