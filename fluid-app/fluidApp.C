@@ -117,6 +117,7 @@ int main(int argc, char* argv[])
              && residualU <= ctrl.residualDrop*firstU
              && residualP <= ctrl.residualDrop*firstP;
             const bool absoluteOk = residualU <= tolU && residualP <= tolP;
+            const bool residualOk = !ctrl.residualRequired || dropOk || absoluteOk;
             bool forceOk = true;
             if (ctrl.forceTolerance > 0)
             {
@@ -125,7 +126,7 @@ int main(int argc, char* argv[])
                     iter > 1 && mag(F - previousForce) <= ctrl.forceTolerance*mag(F);
                 previousForce = F;
             }
-            if ((dropOk || absoluteOk) && forceOk)
+            if (residualOk && forceOk && iter >= ctrl.minIterations)
             {
                 result.converged = true;
                 Info<< "SIMPLE converged in " << iter << " iterations" << nl << endl;

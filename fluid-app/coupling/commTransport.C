@@ -4,7 +4,8 @@
 //   Channel::open (Hello: role fluid, program "fluid-app", interface sizes
 //     {nPoints, nFaces}) -> InterfaceGeometry: values = point coordinates
 //     (3 nPoints), face centres (3 nFaces), face area vectors (3 nFaces);
-//   loop: Solve (values = 3 nPoints displacements [m]) -> Forces (values =
+//   loop: Solve (values = 3 nPoints displacements [m], scalars = {time[, force tolerance,
+//     residual drop]}, integers = {[min SIMPLE iterations]}) -> Forces (values =
 //     3 nFaces forces [N], integers = {SIMPLE iterations, converged 0/1}, scalars =
 //     {residual U, residual p}, same step/iteration as the Solve);
 //     Accept (scalars[0] = time [s] if given, else the step index names the
@@ -71,6 +72,13 @@ public:
             case comm::MessageKind::Solve:
                 c.kind = CommandKind::solve;
                 c.displacements = std::move(m.values); // master only
+                if (m.scalars.size() >= 3)
+                {
+                    c.accuracyGiven = true;
+                    c.forceTolerance = m.scalars[1];
+                    c.residualDrop = m.scalars[2];
+                    c.minIterations = m.integers.empty() ? 1 : static_cast<int>(m.integers[0]);
+                }
                 break;
             case comm::MessageKind::Accept:
                 c.kind = CommandKind::accept;

@@ -316,7 +316,8 @@ fsi::fluid::Command Foam::fluidSolidCoupling::broadcastCommand
         return c;
     }
     label kind = label(c.kind), step = c.step, iteration = c.iteration;
-    scalar time = c.time;
+    label accuracyGiven = c.accuracyGiven, minIterations = c.minIterations;
+    scalar time = c.time, forceTolerance = c.forceTolerance, residualDrop = c.residualDrop;
     scalarList disp(c.displacements.size());
     forAll(disp, i)
     {
@@ -329,6 +330,14 @@ fsi::fluid::Command Foam::fluidSolidCoupling::broadcastCommand
     Pstream::scatter(time);
     Pstream::scatter(disp);
     Pstream::scatter(reason);
+    Pstream::scatter(accuracyGiven);
+    Pstream::scatter(minIterations);
+    Pstream::scatter(forceTolerance);
+    Pstream::scatter(residualDrop);
+    c.accuracyGiven = accuracyGiven;
+    c.minIterations = minIterations;
+    c.forceTolerance = forceTolerance;
+    c.residualDrop = residualDrop;
     c.kind = fsi::fluid::CommandKind(kind);
     c.step = step;
     c.iteration = iteration;
@@ -539,6 +548,22 @@ Foam::fluidSolidCoupling::SolveControls Foam::fluidSolidCoupling::controls
 }
 
 
+Foam::fluidSolidCoupling::SolveControls Foam::fluidSolidCoupling::askedControls
+(
+    const SolveControls& own,
+    const fsi::fluid::Command& solve
+)
+{
+    SolveControls c;
+    c.maxIterations = own.maxIterations;
+    c.minIterations = max(1, solve.minIterations);
+    c.forceTolerance = solve.forceTolerance;
+    c.residualDrop = solve.residualDrop;
+    c.residualRequired = solve.residualDrop > 0;
+    return c;
+}
+
+
 Foam::tmp<Foam::vectorField> Foam::fluidSolidCoupling::faceForces
 (
     const label patchi,
@@ -726,6 +751,7 @@ int Foam::fluidSolidCoupling::runCoupled
     }
 
     const SolveControls ctrl = controls("coupled");
+    bool announced = false; // the first driver-controlled SOLVE says what it overrides
     const clockTime wall;
     while (true)
     {
@@ -737,7 +763,19 @@ int Foam::fluidSolidCoupling::runCoupled
             {
                 Info<< "fsi: SOLVE step " << c.step << " iteration " << c.iteration << endl;
                 moveInterface(c.displacements);
-                const SolveResult r = solve(ctrl);
+                if (c.accuracyGiven && !announced)
+                {
+                    Info<< "fsi: the driver sets the accuracy of every solve (coupling.fluid_accuracy);"
+                        << " fsiDict coupled.residualDrop and coupled.forceTolerance are not used,"
+                        << " coupled.maxIterations " << ctrl.maxIterations << " stays the cap" << endl;
+                    announced = true;
+                }
+                const SolveResult r = solve(c.accuracyGiven ? askedControls(ctrl, c) : ctrl);
+                if (c.accuracyGiven)
+                {
+                    Info<< "fsi: asked force tolerance " << c.forceTolerance << ", residual drop "
+                        << c.residualDrop << ", at least " << c.minIterations << " iterations" << endl;
+                }
                 checkDiverged(r);
                 ForceReport report;
                 const vectorField f(faceForces(patchi_));

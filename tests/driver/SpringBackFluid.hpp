@@ -9,6 +9,7 @@
 
 #include "driver/FluidPeer.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <vector>
@@ -38,9 +39,11 @@ public:
             c->rowwise() += Eigen::RowVector3d(dx, dy, dz);
     }
     driver::FluidResponse solve(int level, int iteration, double time,
-                                const mapping::Values& pointDisplacement) override
+                                const mapping::Values& pointDisplacement,
+                                const driver::FluidAccuracy& accuracy) override
     {
         ++solves;
+        asked.push_back(accuracy);
         if (pointDisplacement.rows() == 0) // not the solid's rank 0: nothing significant
             return {};
         const double meanUy = pointDisplacement.col(1).mean();
@@ -51,7 +54,26 @@ public:
         const double lastTime = accepted.empty() ? 0.0 : accepted.back();
         if (unstableStep > 0 && time - lastTime > unstableStep)
             r.faceForces.setConstant(std::nan(""));
-        r.iterations = 1;
+        // An inexact flow (driver-controlled accuracy eta): like SIMPLE warm-started from its
+        // last solution, the double moves from its last forces F_last towards the exact F and
+        // stops once within eta |F| of it (error left: min(gap, eta |F|), never overshooting);
+        // "iterations" = those of a contraction 0.5 per iteration from gap to eta |F|.
+        if (accuracy.driverControlled && inexactness > 0)
+        {
+            if (lastForces_.rows() != n)
+                lastForces_ = mapping::Values::Zero(n, 3); // from rest
+            const double gap = (lastForces_ - r.faceForces).norm();
+            const double allowed = inexactness * accuracy.forceTolerance * r.faceForces.norm();
+            if (gap > allowed)
+            {
+                r.faceForces += (lastForces_ - r.faceForces) * (allowed / gap);
+                r.iterations = static_cast<int>(std::ceil(std::log2(gap / allowed)));
+            }
+            r.iterations = std::max(r.iterations, accuracy.minIterations);
+        }
+        else
+            r.iterations = 1;
+        lastForces_ = r.faceForces;
         r.converged = true;
         return r;
     }
@@ -60,6 +82,8 @@ public:
     void abort(const std::string& reason) noexcept override { abortReason = reason; }
 
     double unstableStep = 0; // > 0: NaN forces when time - last accepted time exceeds it
+    std::vector<driver::FluidAccuracy> asked; // the accuracy of every solve
+    double inexactness = 0; // > 0: inexact solves, error inexactness x eta |F| at most
     int solves = 0;
     std::vector<double> accepted;
     bool finished = false;
@@ -68,6 +92,7 @@ public:
 private:
     driver::FluidInterface interface_;
     double totalForce_, kappa_;
+    mapping::Values lastForces_; // the last answer (the warm start of the next solve)
 };
 
 } // namespace fsi::testing

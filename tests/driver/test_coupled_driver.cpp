@@ -4,6 +4,8 @@
 // (unit) and 2 ranks (mpi): the solid is distributed, the fluid double lives on rank 0.
 #include "SpringBackFluid.hpp"
 #include "driver/CoupledDriver.hpp"
+#include "driver/RecoveryPolicy.hpp"
+#include "driver/TimeSchedule.hpp"
 #include "material/Material.hpp"
 #include "material/MaterialParameters.hpp"
 #include "mesh/GmshTestMeshes.hpp"
@@ -100,6 +102,7 @@ struct CoupledResult
 {
     driver::RunSummary summary;
     double meanUy = 0;
+    std::vector<driver::FluidAccuracy> asked; // rank 0: the accuracy of every fluid solve
 };
 
 // One output folder for all ranks of `comm` (rank 0's pid): checkpoints are written by every rank.
@@ -117,6 +120,7 @@ struct RunOptions
     bool restart = false;
     double unstableStep = 0; // > 0: the fluid double returns NaN forces for larger steps
     double interfaceShift = 0; // [m] in x: the fluid interface moved away from the solid's
+    double inexactness = 0;    // the fluid double's force error per unit of asked tolerance
 };
 
 CoupledResult runCoupled(const material::MaterialParameters& params, driver::CouplingParameters coupling,
@@ -127,11 +131,12 @@ CoupledResult runCoupled(const material::MaterialParameters& params, driver::Cou
     // Every rank holds the double (the peer is called collectively); only rank 0's data matter.
     auto fluid = std::make_unique<fsi::testing::SpringBackFluid>(solid.wettedNodeCoordinates(), totalForce, kappa);
     fluid->unstableStep = options.unstableStep;
+    fluid->inexactness = options.inexactness;
     fluid->shiftInterface(options.interfaceShift, 0, 0);
     const std::string out = options.out.empty() ? sharedFolder(options.comm, "test") : options.out;
     driver::CoupledDriver driver(options.comm, solid, fluid.get(), coupling, out,
                                  params.relaxationTimes());
-    driver.setVerbose(false);
+    driver.setVerbose(getenv("FSI_TEST_VERBOSE") != nullptr);
     driver.setRestart(options.restart);
     CoupledResult r;
     try
@@ -149,6 +154,7 @@ CoupledResult runCoupled(const material::MaterialParameters& params, driver::Cou
     for (std::size_t i = 0; i < u.size() / 3; ++i)
         r.meanUy += u[3 * i + 1];
     r.meanUy /= static_cast<double>(u.size() / 3);
+    r.asked = fluid->asked;
     EXPECT_TRUE(fluid->finished);
     MPI_Barrier(options.comm);
     if (options.out.empty() && worldRank() == 0)
@@ -404,4 +410,80 @@ TEST(CoupledDriver, NonOverlappingInterfacesAreRefused)
     const std::string what = errorOfRun(shifted);
     EXPECT_NE(what.find("interfaces do not overlap"), std::string::npos) << what;
     EXPECT_EQ(what.find('\n'), std::string::npos) << "one line: " << what;
+}
+
+// Inexact fluid solves (coupling.fluid_accuracy): the double's force is off by the asked force
+// tolerance, so only a solve at the final accuracy gives the fixed point to 1e-9. Every level
+// ends on a final solve, earlier solves are looser, the result equals the closed form to the
+// final accuracy, and the fluid work ("iterations" ~ -2.5 log10(tolerance)) is below that of a
+// run whose every solve is final.
+TEST(CoupledDriver, InexactFluidSolvesEndEveryLevelAtTheFinalAccuracy)
+{
+    const auto visco = viscoelastic({0.6}, {1.0});
+    const double U1long = meanTipResponse(elastic(K, G), F0);
+    const double kappa = 0.8 / U1long;
+    auto coupling = couplingWith("iqn-ils", 0.5);
+    coupling.convergence.absoluteTolerance = 1e-10; // [m]; |u| ~ 0.04 m: the final 1e-9 force
+                                                    // accuracy leaves ~4e-11 m
+    coupling.time.type = "list";
+    coupling.time.times = {0.0, 0.5, 1.0, 2.0, 1.0e9};
+    driver::FluidAccuracyParameters accuracy;
+    accuracy.finalForceTolerance = 1e-9;
+    accuracy.maxForceTolerance = 1e-2;
+    accuracy.forcingFactor = 0.01;
+    coupling.fluidAccuracy = accuracy;
+    RunOptions inexact;
+    inexact.inexactness = 1.0;
+    const auto loose = runCoupled(visco, coupling, F0, kappa, inexact);
+
+    auto allFinal = coupling;
+    allFinal.fluidAccuracy->maxForceTolerance = accuracy.finalForceTolerance;
+    const auto tight = runCoupled(visco, allFinal, F0, kappa, inexact);
+
+    const double U1 = U1long; // t = 1e9 s: the long-term response
+    const double exact = U1 / (1 + kappa * U1);
+    EXPECT_NEAR(loose.meanUy, exact, 1e-8 * exact);
+    EXPECT_NEAR(loose.meanUy, tight.meanUy, 1e-8 * exact);
+    if (worldRank() != 0)
+        return;
+    ASSERT_EQ(loose.summary.history.size(), 5u);
+    int looseSolves = 0, solve = 0;
+    for (const auto& level : loose.summary.history)
+    {
+        solve += level.couplingIterations;
+        const auto& last = loose.asked[solve - 1];
+        EXPECT_TRUE(last.driverControlled);
+        EXPECT_TRUE(last.isFinal) << "level " << level.level << " accepted on a loose solve";
+        EXPECT_DOUBLE_EQ(last.forceTolerance, accuracy.finalForceTolerance);
+    }
+    for (const auto& a : loose.asked)
+        looseSolves += a.isFinal ? 0 : 1;
+    EXPECT_GT(looseSolves, 0);
+    EXPECT_DOUBLE_EQ(loose.asked.front().forceTolerance, accuracy.maxForceTolerance); // from rest
+    EXPECT_LT(loose.summary.fluidIterations, tight.summary.fluidIterations);
+    std::printf("inexact fluid: %d fluid iterations in %d solves (%d loose) against %d in %d "
+                "all-final solves\n",
+                loose.summary.fluidIterations, loose.summary.couplingIterations, looseSolves,
+                tight.summary.fluidIterations, tight.summary.couplingIterations);
+}
+
+// The relaxation cure scales the accelerator through Accelerator::scaleRelaxation: a fresh
+// constant relaxation at omega 1 becomes 0.5 after one cure, 0.25 after two.
+TEST(RecoveryPolicy, RelaxationCureScalesAFreshAccelerator)
+{
+    auto coupling = couplingWith("constant", 1.0);
+    driver::RecoveryPolicy policy(coupling.recovery, coupling.acceleration);
+    driver::TimeSchedule schedule({}, {});
+    auto accelerator = policy.makeAccelerator();
+    const driver::LevelAttempt diverged{driver::Outcome::Diverged, "diverged", 3};
+    EXPECT_FALSE(policy.cure(diverged, schedule, accelerator).empty());
+    EXPECT_FALSE(policy.cure(diverged, schedule, accelerator).empty());
+    EXPECT_DOUBLE_EQ(policy.relaxationScale(), 0.25);
+    accelerator->beginLevel();
+    const Eigen::VectorXd u = Eigen::VectorXd::Zero(3), uHat = Eigen::VectorXd::Ones(3);
+    EXPECT_DOUBLE_EQ(accelerator->update(u, uHat)[0], 0.25);
+    // A structural failure in a level's first iteration at level 0: no cure applies.
+    const driver::LevelAttempt solidFailed{driver::Outcome::SolidFailed, "newton", 1};
+    EXPECT_TRUE(policy.cure(solidFailed, schedule, accelerator).empty());
+    EXPECT_DOUBLE_EQ(policy.relaxationScale(), 0.25);
 }

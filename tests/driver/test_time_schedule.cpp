@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+#include <stdexcept>
+
 using namespace fsi::driver;
 
 namespace
@@ -124,4 +127,48 @@ TEST(TimeSchedule, CutStepInsertsAShorterLevel)
     EXPECT_DOUBLE_EQ(s.lastStep(), 1.0);
     EXPECT_EQ(s.level(), 1);
     EXPECT_EQ(allTimes(s), (std::vector<double>{1, 4, 8}));
+}
+
+// error_tolerance: the step follows the path error e with dt_new = dt * 0.9 sqrt(tol / e),
+// clamped to [shrink_limit, growth_limit]; an unknown e (NaN) falls back to the change rule.
+TEST(TimeSchedule, AdaptiveStepFollowsThePathError)
+{
+    TimeScheduleParameters p;
+    p.type = "adaptive";
+    p.end = 1000;
+    p.firstStep = 1;
+    p.targetChange = 0.1;
+    p.errorTolerance = 1e-3;
+    p.growthLimit = 3;
+    p.shrinkLimit = 0.25;
+    TimeSchedule s(p, {});
+    EXPECT_DOUBLE_EQ(s.advance(0.5), 1.0); // level 1: first_step
+    // unknown path error: change rule, 0.1 / 0.05 = 2
+    EXPECT_DOUBLE_EQ(s.advance(0.05, std::numeric_limits<double>::quiet_NaN()) - 1.0, 2.0);
+    // e = tol / 4: factor 0.9 * 2 = 1.8 (the change is ignored)
+    EXPECT_NEAR(s.advance(10.0, 2.5e-4) - 3.0, 2.0 * 1.8, 1e-12);
+    // e = 100 tol: factor 0.09, clamped to the shrink limit
+    const double before = s.lastStep();
+    const double t = s.time();
+    EXPECT_NEAR(s.advance(1e-6, 0.1) - t, 0.25 * before, 1e-12);
+    // e = 0 (exactly linear history): the growth limit
+    const double t2 = s.time();
+    EXPECT_NEAR(s.advance(0.0, 0.0) - t2, 3.0 * 0.25 * before, 1e-12);
+}
+
+TEST(TimeSchedule, ErrorToleranceIsValidated)
+{
+    TimeScheduleParameters p;
+    p.type = "adaptive";
+    p.end = 10;
+    p.errorTolerance = -1;
+    try
+    {
+        p.validate();
+        FAIL() << "negative error_tolerance accepted";
+    }
+    catch (const std::runtime_error& e)
+    {
+        EXPECT_NE(std::string(e.what()).find("coupling.time.error_tolerance"), std::string::npos);
+    }
 }

@@ -88,6 +88,9 @@ TEST(Viscoelastic, UniaxialCreepMatchesAnalyticCompliance)
     std::printf("max relative error over %zu levels: %.2e; factorizations: %d\n", times.size(),
                 maxError, solver.factorizationCount());
     EXPECT_LT(maxError, 1e-3);
-    // one factorization per distinct dt (0, 0.005, 0.05, 1) - the tangent is constant per dt
-    EXPECT_EQ(solver.factorizationCount(), 4);
+    // The tangent is constant per dt (0, 0.005, 0.05, 1) and changes little between them: the
+    // later dt are solved by CG on the first factorization (reuseFactorization of a linear
+    // problem), never more than one factorization per distinct dt.
+    EXPECT_LT(solver.factorizationCount(), 4);
+    EXPECT_GE(solver.factorizationCount(), 1);
 }

@@ -49,6 +49,11 @@ public:
     // (a quasi-Newton step).
     virtual double lastRelaxation() const { return std::numeric_limits<double>::quiet_NaN(); }
 
+    // Stronger relaxation for a redone level (a recovery cure): multiplies the strategy's
+    // relaxation factors (omega, omega_0, the Aitken upper clamp) by factor in (0, 1].
+    // Takes effect from the next beginLevel(); keeps what the strategy carries over.
+    virtual void scaleRelaxation(double factor) = 0;
+
     // What the last update did that the log should say (a clamp, filtered columns, a fallback);
     // empty when nothing noteworthy. The library never prints.
     const std::string& lastNote() const { return note_; }

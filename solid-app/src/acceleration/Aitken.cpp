@@ -21,6 +21,12 @@ void Aitken::beginLevel()
     note_.clear();
 }
 
+void Aitken::scaleRelaxation(double factor)
+{
+    params_.initialRelaxation *= factor;
+    params_.maxRelaxation = std::max(params_.minRelaxation, params_.maxRelaxation * factor);
+}
+
 double Aitken::clamp(double omega, const char* what)
 {
     const double magnitude = std::fabs(omega);

@@ -27,6 +27,8 @@ public:
                            const Eigen::VectorXd& solverOutput) override;
     void endLevel() override;
     double lastRelaxation() const override { return omega_; }
+    // omega_0 and max_relaxation (not below min_relaxation) times factor.
+    void scaleRelaxation(double factor) override;
     AcceleratorState saveState() const override;
     void loadState(const AcceleratorState& state) override;
 

@@ -17,6 +17,7 @@ public:
                            const Eigen::VectorXd& solverOutput) override;
     void endLevel() override {}
     double lastRelaxation() const override { return omega_; }
+    void scaleRelaxation(double factor) override { omega_ *= factor; }
 
 private:
     double omega_;

@@ -30,6 +30,8 @@ public:
                            const Eigen::VectorXd& solverOutput) override;
     void endLevel() override;
     double lastRelaxation() const override { return omega_; }
+    // omega_0 of the first update of each level times factor.
+    void scaleRelaxation(double factor) override { params_.initialRelaxation *= factor; }
     AcceleratorState saveState() const override;
     void loadState(const AcceleratorState& state) override;
 

@@ -107,6 +107,7 @@ void CheckpointStore::write(const DriverState& d, const fe::CommittedState& soli
         w.put("accelerator_sizes", toDoubles(d.accelerator.sizes));
         w.put("accelerator_values", d.accelerator.values);
         w.put("relaxation_scale", d.relaxationScale);
+        w.put("level_measures", std::vector<double>{d.firstResidual, d.pathError});
         w.put("accepted_times", d.acceptedTimes);
         w.put("totals_int", std::vector<int>{d.couplingIterations, d.fluidIterations, d.factorizations});
         w.put("totals_seconds", std::vector<double>{d.wallSeconds, d.fluidSeconds, d.solidSeconds,
@@ -165,6 +166,14 @@ CheckpointStore::Loaded CheckpointStore::loadLatest() const
             d.accelerator.sizes.push_back(static_cast<long>(s));
         d.accelerator.values = r.doubles("accelerator_values");
         d.relaxationScale = r.scalar("relaxation_scale");
+        if (r.has("level_measures"))
+        {
+            const auto measures = r.doubles("level_measures");
+            if (measures.size() != 2)
+                throw std::runtime_error(r.path() + ": malformed level_measures");
+            d.firstResidual = measures[0];
+            d.pathError = measures[1];
+        }
         d.acceptedTimes = r.doubles("accepted_times");
         const auto ti = r.ints("totals_int");
         const auto ts = r.doubles("totals_seconds");

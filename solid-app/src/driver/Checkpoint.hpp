@@ -16,6 +16,7 @@
 
 #include <mpi.h>
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,11 @@ struct DriverState
     std::vector<double> previousInterfaceDisplacement; // u_{n-1} [m]
     acceleration::AcceleratorState accelerator;
     double relaxationScale = 1.0;      // product of the relaxation cures applied so far
+    // Measures of the accepted level that steer the next one: its first coupling residual
+    // (the forcing term's estimate for the next level's first iterate) [m] and its path error
+    // (the adaptive schedule); NaN when unknown. Optional in the archive (older checkpoints).
+    double firstResidual = 0.0;
+    double pathError = std::numeric_limits<double>::quiet_NaN();
     std::vector<double> acceptedTimes; // every accepted level so far [s] (the PVD series)
     // Run totals so far.
     int couplingIterations = 0, fluidIterations = 0, factorizations = 0;

@@ -40,13 +40,20 @@ CommFluidPeer::CommFluidPeer(comm::Channel& channel) : channel_(channel)
 }
 
 FluidResponse CommFluidPeer::solve(int level, int iteration, double time,
-                                   const mapping::Values& pointDisplacement)
+                                   const mapping::Values& pointDisplacement,
+                                   const FluidAccuracy& accuracy)
 {
     comm::Message command;
     command.kind = comm::MessageKind::Solve;
     command.timeStep = level;
     command.iteration = iteration;
     command.scalars = {time};
+    if (accuracy.driverControlled)
+    {
+        command.scalars.push_back(accuracy.forceTolerance);
+        command.scalars.push_back(accuracy.residualDrop);
+        command.integers = {accuracy.minIterations};
+    }
     if (channel_.isRoot())
     {
         command.values.resize(3 * pointDisplacement.rows());

@@ -4,7 +4,9 @@
 //   Hello (in Channel::open): fluid interfaceSizes = {points, faces}
 //   InterfaceGeometry  fluid -> solid  values = points (3 P), face centres (3 F), area vectors (3 F)
 //   Solve              solid -> fluid  values = point displacements (3 P) [m]; step = level,
-//                                      iteration; scalars = {time [s]}
+//                                      iteration; scalars = {time [s]} (the fluid's own
+//                                      accuracy) or {time, force tolerance, residual drop}
+//                                      with integers = {min SIMPLE iterations} (FluidAccuracy)
 //   Forces             fluid -> solid  values = face forces (3 F) [N]; integers = {SIMPLE
 //                                      iterations[, converged 0/1]}; scalars = final residuals
 //   Accept             solid -> fluid  step = level; scalars = {time [s]}
@@ -28,7 +30,8 @@ public:
 
     const FluidInterface& interface() const override { return interface_; }
     FluidResponse solve(int level, int iteration, double time,
-                        const mapping::Values& pointDisplacement) override;
+                        const mapping::Values& pointDisplacement,
+                        const FluidAccuracy& accuracy) override;
     void accept(int level, double time) override;
     void finish() override;
     void abort(const std::string& reason) noexcept override;

@@ -3,42 +3,38 @@
 // The quasi-steady coupling loop (the paper's figure 4), run by solid-app. Per time level:
 //   u_0 = predictor (from past levels);  accelerator.beginLevel()
 //   iterate i = 1, 2, ...:
-//     map u_{i-1} (solid wetted nodes) -> fluid points (consistent), fluid solves the steady flow
+//     map u_{i-1} (solid wetted nodes) -> fluid points (consistent); the fluid solves the steady
+//     flow to the accuracy the forcing term asks for (FluidAccuracy.hpp)
 //     map face forces -> solid wetted nodes (conservative), solid solves equilibrium -> u_hat_i
 //     r_i = u_hat_i - u_{i-1}; converged when |r_i|/sqrt(n) < eps (and/or relative criterion)
+//       and the last fluid solve met the final accuracy
 //     u_i = accelerator.update(u_{i-1}, u_hat_i)
 //   on convergence: commit the material history, the fluid writes its fields, outputs are written.
-// A level that diverges (NaN, a residual growing past divergence_factor), hits max_iterations
-// or whose structural Newton solve fails is redone with a cure (coupling.recovery: stronger
-// relaxation, a smaller time step), announced as "[cure]"; when the cures are used up the run
+// A level that diverges, hits max_iterations or whose structural Newton solve fails is redone
+// with a cure (RecoveryPolicy.hpp), announced as "[cure]"; when the cures are used up the run
 // stops with the diagnosis (on_max_iterations: continue accepts a capped level instead, loudly).
-// Every `checkpoint.every` accepted levels the state is written to OUT/checkpoint (Checkpoint.hpp)
-// and setRestart(true) continues from there. Collective on the solid communicator; only rank 0
-// talks to the fluid.
+// Logs: CouplingLog.hpp; post-processing columns: LevelProbe.hpp. Every `checkpoint.every`
+// accepted levels the state is written to OUT/checkpoint (Checkpoint.hpp) and setRestart(true)
+// continues from there. Collective on the solid communicator; only rank 0 talks to the fluid.
 #pragma once
 
 #include "acceleration/Accelerator.hpp"
 #include "driver/CouplingParameters.hpp"
 #include "driver/FluidPeer.hpp"
+#include "driver/LevelProbe.hpp"
 #include "fe/StructuralSolver.hpp"
 #include "mapping/Mapping.hpp"
 
 #include <mpi.h>
 
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
 
 namespace fsi::driver
 {
-
-// A named structural point whose displacement goes into the history (nearest mesh node).
-struct WatchedNode
-{
-    std::string name;
-    int node = -1;
-};
 
 struct LevelRecord
 {
@@ -51,9 +47,12 @@ struct LevelRecord
     double residual = 0.0;      // |r|/sqrt(n) at acceptance [m]
     bool converged = false;
     Eigen::Vector3d force = Eigen::Vector3d::Zero(); // total fluid force on the structure [N]
-    std::vector<Eigen::Vector3d> watched;            // displacement of each watched node [m]
-    double sectionAngle = 0.0;  // [deg] (if configured)
+    std::vector<double> probes;  // the LevelProbes' values, in their column order
     double relativeChange = 0.0; // |u_n - u_{n-1}| / |u_n| of the interface displacement
+    // |u_n - u_lin| / |u_n|, u_lin the linear extrapolation of the two levels before (the
+    // error of the quasi-steady path, TimeSchedule.hpp); NaN when fewer levels exist
+    double pathError = std::numeric_limits<double>::quiet_NaN();
+    double firstResidual = 0.0;  // |r|/sqrt(n) of the level's first coupling iteration [m]
     double wallSeconds = 0.0;   // since the start of the run (restarts included)
     int retries = 0;            // automatic cures applied to this level
 };
@@ -73,12 +72,13 @@ class CoupledDriver
 {
 public:
     // solid: the structural solver (not owned, outlives the driver). fluid: the fluid peer,
-    // non-null on every rank of `comm` (not owned; called collectively). outputFolder: where coupling.csv, history.csv and
-    // interface/ are written (rank 0; created if missing). relaxationTimes: the material's
-    // Prony tau_i (empty: elastic) for the adaptive time schedule.
+    // non-null on every rank of `comm` (not owned; called collectively). outputFolder: where
+    // coupling.csv, history.csv and interface/ are written (rank 0; created if missing).
+    // relaxationTimes: the material's Prony tau_i (empty: elastic) for the adaptive time
+    // schedule. probes: post-processing quantities written per accepted level (LevelProbe.hpp).
     CoupledDriver(MPI_Comm comm, fe::StructuralSolver& solid, FluidPeer* fluid,
                   CouplingParameters params, std::string outputFolder,
-                  std::vector<double> relaxationTimes, std::vector<WatchedNode> watched = {});
+                  std::vector<double> relaxationTimes, LevelProbes probes = {});
     ~CoupledDriver();
 
     // Called on every rank after each accepted level (e.g. to write VTU).

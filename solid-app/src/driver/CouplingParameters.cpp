@@ -125,7 +125,7 @@ TimeScheduleParameters parseTime(const config::Block& b)
     else
     {
         b.allowOnly({"type", "end", "first_step", "min_step", "max_step", "target_change",
-                     "growth_limit", "shrink_limit", "hit"});
+                     "error_tolerance", "growth_limit", "shrink_limit", "hit"});
         p.end = b.number("end");
         p.firstStep = b.number("first_step", 0.0);
         p.minStep = b.number("min_step", 0.0);
@@ -133,6 +133,7 @@ TimeScheduleParameters parseTime(const config::Block& b)
         p.targetChange = b.number("target_change", p.targetChange);
         p.growthLimit = b.number("growth_limit", p.growthLimit);
         p.shrinkLimit = b.number("shrink_limit", p.shrinkLimit);
+        p.errorTolerance = b.number("error_tolerance", p.errorTolerance);
         if (b.has("hit"))
             p.hit = b.numbers("hit");
     }
@@ -154,7 +155,7 @@ CouplingParameters CouplingParameters::parse(const config::Block& b)
 {
     b.allowOnly({"launch", "max_iterations", "on_max_iterations", "divergence_factor", "predictor",
                  "convergence", "acceleration", "mapping", "time", "section_angle", "checkpoint",
-                 "recovery"});
+                 "recovery", "fluid_accuracy"});
     CouplingParameters p;
     if (auto l = b.optionalBlock("launch"))
     {
@@ -199,6 +200,29 @@ CouplingParameters CouplingParameters::parse(const config::Block& b)
         for (double& x : a.liftDirection)
             x /= n;
         p.sectionAngle = a;
+    }
+    if (auto a = b.optionalBlock("fluid_accuracy"))
+    {
+        a->allowOnly({"final", "forcing_factor", "max_force_tolerance", "min_iterations"});
+        FluidAccuracyParameters f;
+        if (auto fin = a->optionalBlock("final"))
+        {
+            fin->allowOnly({"force_tolerance", "residual_drop"});
+            f.finalForceTolerance = fin->number("force_tolerance", f.finalForceTolerance);
+            f.finalResidualDrop = fin->number("residual_drop", f.finalResidualDrop);
+        }
+        f.forcingFactor = a->number("forcing_factor", f.forcingFactor);
+        f.maxForceTolerance = a->number("max_force_tolerance", f.maxForceTolerance);
+        f.minIterations = a->integer("min_iterations", f.minIterations);
+        try
+        {
+            f.validate();
+        }
+        catch (const std::exception& e)
+        {
+            throw std::runtime_error(a->file() + ": " + e.what());
+        }
+        p.fluidAccuracy = f;
     }
     if (auto k = b.optionalBlock("checkpoint"))
     {
@@ -267,7 +291,19 @@ std::string CouplingParameters::echo() const
     else if (time.type != "steady")
         s << ", end: " << time.end << ", first_step: " << time.firstStep
           << ", max_step: " << time.maxStep;
+    if (time.type == "adaptive")
+        s << ", min_step: " << time.minStep << ", target_change: " << time.targetChange
+          << ", error_tolerance: " << time.errorTolerance << ", growth_limit: " << time.growthLimit
+          << ", shrink_limit: " << time.shrinkLimit;
     s << "}\n";
+    if (fluidAccuracy)
+        s << "  fluid_accuracy: {final: {force_tolerance: " << fluidAccuracy->finalForceTolerance
+          << ", residual_drop: " << fluidAccuracy->finalResidualDrop
+          << "}, forcing_factor: " << fluidAccuracy->forcingFactor
+          << ", max_force_tolerance: " << fluidAccuracy->maxForceTolerance
+          << ", min_iterations: " << fluidAccuracy->minIterations << "}\n";
+    else
+        s << "  fluid_accuracy: none (the fluid's own fsiDict controls)\n";
     if (sectionAngle)
         s << "  section_angle: {name: " << sectionAngle->name << "}\n";
     s << "  checkpoint: {every: " << checkpoint.every << ", keep: " << checkpoint.keep << "}\n"

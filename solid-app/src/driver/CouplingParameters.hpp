@@ -9,6 +9,7 @@
 #include "acceleration/Accelerator.hpp"
 #include "acceleration/Convergence.hpp"
 #include "driver/Checkpoint.hpp"
+#include "driver/FluidAccuracy.hpp"
 #include "driver/TimeSchedule.hpp"
 #include "mapping/Mapping.hpp"
 
@@ -62,6 +63,7 @@ struct CouplingParameters
     bool continueOnMaxIterations = false; // false: a level that hits the cap stops the run
     double divergenceFactor = 1e3;       // stop when |r| grows past this x the level's first |r|
     std::string predictor = "linear";    // first iterate of a level: constant | linear
+    std::optional<FluidAccuracyParameters> fluidAccuracy; // absent: the fluid's own controls
     acceleration::ConvergenceParameters convergence;
     acceleration::AcceleratorParameters acceleration;
     mapping::MappingParameters mapping;

@@ -7,6 +7,7 @@
 // on rank 0 only.
 #pragma once
 
+#include "driver/FluidAccuracy.hpp"
 #include "mapping/Mapping.hpp"
 
 #include <string>
@@ -29,7 +30,7 @@ struct FluidResponse
     int iterations = 0;          // SIMPLE iterations used in this solve
     double initialResidual = 0;  // largest initial residual of the solve (U, p)
     double finalResidual = 0;    // largest final residual
-    bool converged = false;      // fluid's own criterion met (else: iteration cap hit)
+    bool converged = false;      // the asked accuracy was met (else: iteration cap hit)
 };
 
 class FluidPeer
@@ -39,9 +40,11 @@ public:
     // Significant on rank 0.
     virtual const FluidInterface& interface() const = 0;
     // Move the interface points by pointDisplacement (relative to the reference geometry,
-    // points x 3 [m]) and solve the steady flow for level `level` at time `time` [s].
+    // points x 3 [m]) and solve the steady flow for level `level` at time `time` [s] to
+    // `accuracy` (FluidAccuracy.hpp; driverControlled false: the fluid's own controls).
     virtual FluidResponse solve(int level, int iteration, double time,
-                                const mapping::Values& pointDisplacement) = 0;
+                                const mapping::Values& pointDisplacement,
+                                const FluidAccuracy& accuracy) = 0;
     // The level converged: the fluid writes its fields for this time.
     virtual void accept(int level, double time) = 0;
     // Normal end of the run.

@@ -88,10 +88,14 @@ int runCoupled(const std::string& configFile, const std::string& outputFolder, b
             fe::StructuralSolver solid(comm, mesh, *law, app::problemFromConfig(cfg));
             CommFluidPeer fluid(*channel);
 
-            std::vector<WatchedNode> watched;
+            LevelProbes probes;
             for (const auto& w : cfg.output.watch)
-                watched.push_back({w.name, mesh.nearestNode({w.point[0], w.point[1], w.point[2]})});
-            CoupledDriver driver(comm, solid, &fluid, params, out, cfg.material.relaxationTimes(), watched);
+                probes.push_back(std::make_unique<WatchedNodeProbe>(
+                    w.name, mesh.nearestNode({w.point[0], w.point[1], w.point[2]})));
+            if (params.sectionAngle)
+                probes.push_back(std::make_unique<SectionAngleProbe>(*params.sectionAngle, mesh));
+            CoupledDriver driver(comm, solid, &fluid, params, out, cfg.material.relaxationTimes(),
+                                 std::move(probes));
             driver.setRestart(restart);
 
             io::PvdSeries series((fs::path(out) / "solid.pvd").string());

@@ -53,6 +53,9 @@ void TimeScheduleParameters::validate() const
             fail("growth_limit", "must be >= 1");
         if (!(shrinkLimit > 0.0 && shrinkLimit <= 1.0))
             fail("shrink_limit", "must be in (0, 1]");
+        if (!(errorTolerance >= 0.0 && errorTolerance < 1.0))
+            fail("error_tolerance", "must be in [0, 1) (relative path error per level, e.g. 1e-3; "
+                                    "0 = steer by target_change)");
     }
     for (double h : hit)
         if (!(h > 0.0 && h <= end))
@@ -113,12 +116,21 @@ double TimeSchedule::progress() const
     return std::log1p(time_ / params_.firstStep) / std::log1p(params_.end / params_.firstStep);
 }
 
-double TimeSchedule::nextStepCandidate(double change) const
+double TimeSchedule::endTime() const
+{
+    return params_.type == "adaptive" ? params_.end : planned_.back();
+}
+
+double TimeSchedule::nextStepCandidate(double change, double pathError) const
 {
     if (level_ == 0)
         return params_.firstStep;
     double factor = params_.growthLimit;
-    if (std::isfinite(change) && change > 0.0)
+    if (params_.errorTolerance > 0.0 && std::isfinite(pathError) && pathError >= 0.0)
+        factor = pathError > 0.0 ? std::clamp(0.9 * std::sqrt(params_.errorTolerance / pathError),
+                                              params_.shrinkLimit, params_.growthLimit)
+                                 : params_.growthLimit;
+    else if (std::isfinite(change) && change > 0.0)
         factor = std::clamp(params_.targetChange / change, params_.shrinkLimit, params_.growthLimit);
     double dt = lastStep_ * factor;
     dt = std::max(dt, params_.minStep);
@@ -127,14 +139,14 @@ double TimeSchedule::nextStepCandidate(double change) const
     return dt;
 }
 
-double TimeSchedule::advance(double relativeChangeOfLastLevel)
+double TimeSchedule::advance(double relativeChangeOfLastLevel, double pathErrorOfLastLevel)
 {
     if (!hasNext())
         throw std::logic_error("TimeSchedule::advance past the last level");
     double next;
     if (params_.type == "adaptive")
     {
-        next = time_ + nextStepCandidate(relativeChangeOfLastLevel);
+        next = time_ + nextStepCandidate(relativeChangeOfLastLevel, pathErrorOfLastLevel);
         for (double h : params_.hit)
             if (h > time_ * (1 + timeEps) + timeEps && next > h * (1 - timeEps))
             {
@@ -191,8 +203,10 @@ std::string TimeSchedule::describe() const
     std::ostringstream s;
     s << "time levels: " << params_.type;
     if (params_.type == "adaptive")
-        s << ", end " << params_.end << " s, first step " << params_.firstStep << " s, target change "
-          << params_.targetChange << ", dt in [" << params_.minStep << ", "
+        s << ", end " << params_.end << " s, first step " << params_.firstStep << " s, "
+          << (params_.errorTolerance > 0 ? "path error tolerance " : "target change ")
+          << (params_.errorTolerance > 0 ? params_.errorTolerance : params_.targetChange)
+          << ", dt in [" << params_.minStep << ", "
           << (params_.maxStep > 0 ? std::to_string(params_.maxStep) : std::string("inf")) << "] s";
     else
         s << ", " << planned_.size() << " levels from 0 to " << planned_.back() << " s";

@@ -9,11 +9,18 @@
 //   list       the given times (strictly increasing, first 0)
 //   geometric  t_1 = first_step, dt_{k+1} = growth * dt_k, capped at max_step, up to end
 //   adaptive   dt_{k+1} = dt_k * clamp(target_change / change_k, shrink_limit, growth_limit),
-//              change_k = |u_k - u_{k-1}| / max|u| of the interface displacement over level k,
+//              change_k = |u_k - u_{k-1}| / |u_k| of the interface displacement over level k,
+//              or, with error_tolerance > 0, steered by the error of the quasi-steady path:
+//              dt_{k+1} = dt_k * clamp(0.9 sqrt(error_tolerance / e_k), shrink, growth) with
+//              e_k = |u_k - u_lin| / |u_k|, u_lin the linear extrapolation of the two levels
+//              before k to t_k (the local error of a history that is piecewise linear in time,
+//              as the Prony recursion assumes, is of the same order dt^2 u''); levels whose
+//              e_k is unknown (the first two) use the change rule.
 //              dt within [min_step, max_step]; `hit` times (e.g. 50, 360 s) are landed on
 //              exactly. first_step defaults to min(tau_i)/10 from the Prony series.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -32,6 +39,7 @@ struct TimeScheduleParameters
     double targetChange = 0.02;  // adaptive: wanted relative interface change per level
     double growthLimit = 2.0;    // adaptive: largest dt_{k+1}/dt_k
     double shrinkLimit = 0.5;    // adaptive: smallest dt_{k+1}/dt_k
+    double errorTolerance = 0.0; // adaptive: relative path error per level (0 = change rule)
     std::vector<double> hit;     // adaptive/geometric: times to land on exactly [s]
     // Throws std::runtime_error naming coupling.time.<key> and the fix.
     void validate() const;
@@ -47,9 +55,13 @@ public:
     double time() const { return time_; }
     int level() const { return level_; }
     bool hasNext() const;
-    // dt of the next level, given the relative interface change of the level just accepted
-    // (ignored unless adaptive). Returns the new time; level() increases by one.
-    double advance(double relativeChangeOfLastLevel);
+    // dt of the next level, given the relative interface change and the relative path error
+    // (NaN: unknown) of the level just accepted (both ignored unless adaptive). Returns the new
+    // time; level() increases by one.
+    double advance(double relativeChangeOfLastLevel,
+                   double pathErrorOfLastLevel = std::numeric_limits<double>::quiet_NaN());
+    // Last time of the schedule [s] (0 for steady).
+    double endTime() const;
     double lastStep() const { return lastStep_; }
     // Number of levels when known in advance (steady, list, geometric); -1 for adaptive.
     int plannedLevels() const;
@@ -68,7 +80,7 @@ public:
     bool cutStep(double factor);
 
 private:
-    double nextStepCandidate(double change) const;
+    double nextStepCandidate(double change, double pathError) const;
     TimeScheduleParameters params_;
     double time_ = 0.0;
     int level_ = 0;

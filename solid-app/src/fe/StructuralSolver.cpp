@@ -158,6 +158,10 @@ StructuralSolver::StructuralSolver(MPI_Comm comm, const mesh::Mesh& mesh,
     linalg::DirectSolverOptions options;
     options.symmetric = true;
     options.verbosity = problem_.linearSolverVerbosity;
+    // A linear problem's tangent changes with dt only (and little): CG on the last
+    // factorization instead of a new one (SparseDirectSolver::reuseFactorization).
+    options.reuseFactorization =
+        problem_.kinematics == material::Kinematics::SmallStrain && law.isLinearInStrain();
     linear_ = std::make_unique<linalg::SparseDirectSolver>(comm_, options);
     linear_->setPattern(numFree_, pattern_->csr.tripletRows(), pattern_->csr.tripletColumns());
     values_.assign(pattern_->csr.nonZeros(), 0.0);
@@ -165,6 +169,7 @@ StructuralSolver::StructuralSolver(MPI_Comm comm, const mesh::Mesh& mesh,
     u_.assign(nDofs, 0.0);
     uCommitted_ = u_;
     fextCommitted_.assign(nDofs, 0.0);
+    linearProblem_ = problem_.kinematics == material::Kinematics::SmallStrain && law_.isLinearInStrain();
 }
 
 StructuralSolver::~StructuralSolver() = default;
@@ -367,6 +372,7 @@ bool StructuralSolver::newton(const std::vector<double>& fext, double factor,
     {
         report.referenceForce = ref;
         report.finalResidual = norm;
+        lastResidual_ = norm;
         if (norm <= nw.residualTolerance * ref + nw.absoluteTolerance)
             return true;
         if (it >= nw.maxIterations)
@@ -475,16 +481,60 @@ SolveReport StructuralSolver::solve(const material::TimeStep& step, const Interf
     return report;
 }
 
+// A linear level (small strain, a law linear in the strain) whose last solve converged at the
+// same step and load factor: R(u + du) = R(u) + (f_new - f_old) - K du, so du = K^-1 (f_new -
+// f_old) keeps the converged residual, with the factorization already in place (no assembly).
+// Declined (false, nothing changed) for non-finite loads or loads that shrink by more than 10x
+// (the relative tolerance of the last solve would not carry over).
+bool StructuralSolver::linearUpdate(const std::vector<double>& fTarget, SolveReport& report)
+{
+    std::vector<double> du(numFree_, 0.0);
+    double change2 = 0.0, target2 = 0.0, last2 = 0.0;
+    for (int dof = 0; dof < numDofs(); ++dof)
+    {
+        const int eq = equation_[dof];
+        if (eq < 0)
+            continue;
+        const double d = fTarget[dof] - fextLast_[dof];
+        change2 += d * d;
+        target2 += fTarget[dof] * fTarget[dof];
+        last2 += fextLast_[dof] * fextLast_[dof];
+        if (rank_ == 0)
+            du[eq] = d;
+    }
+    if (!std::isfinite(change2) || target2 < 1e-2 * last2)
+        return false; // Newton diagnoses non-finite loads
+    const double linearStart = MPI_Wtime();
+    linear_->solveSummedRhs(du);
+    linearSeconds_ += MPI_Wtime() - linearStart;
+    for (int dof = 0; dof < numDofs(); ++dof)
+        if (equation_[dof] >= 0)
+            u_[dof] += du[equation_[dof]];
+    fextLast_ = fTarget;
+    report.converged = true;
+    report.newtonIterations = 1;
+    report.initialResidual = std::sqrt(change2);
+    report.finalResidual = lastResidual_;
+    report.referenceForce = std::sqrt(target2);
+    report.message = "linear update of the last converged solve (same tangent, new loads)";
+    return true;
+}
+
 SolveReport StructuralSolver::solveLevel(const material::TimeStep& step,
                                          const InterfaceLoads& interface, double loadFactor)
 {
     if (!(step.dt >= 0.0))
         throw std::runtime_error("StructuralSolver::solve: dt must be >= 0");
+    const bool sameLinearSystem = linearUpdateReady_ && lastConverged_ && step.time == step_.time &&
+                                  step.dt == step_.dt && loadFactor == factorLast_;
     step_ = step;
     assemblySeconds_ = linearSeconds_ = 0.0;
     std::vector<double> fTarget;
     buildExternalLoads(loadFactor, interface, fTarget);
     SolveReport report;
+    if (sameLinearSystem && linearUpdate(fTarget, report))
+        return report;
+    linearUpdateReady_ = false;
     // attempt 0: the full step from the last converged state (warm start)
     std::vector<double> u = lastConverged_ ? u_ : uCommitted_;
     fextLast_ = fTarget;
@@ -494,6 +544,7 @@ SolveReport StructuralSolver::solveLevel(const material::TimeStep& step,
         u_ = u;
         lastConverged_ = true;
         report.converged = true;
+        linearUpdateReady_ = linearProblem_;
         return report;
     }
     // sub-stepping from the committed state: loads ramped from the committed ones
@@ -525,6 +576,7 @@ SolveReport StructuralSolver::solveLevel(const material::TimeStep& step,
             u_ = u;
             lastConverged_ = true;
             report.converged = true;
+            linearUpdateReady_ = linearProblem_;
             report.loadCuts = cuts;
             report.newtonIterations = iterations;
             report.message = "converged after load sub-stepping (" + firstFailure + ")";
@@ -572,10 +624,12 @@ void StructuralSolver::acceptLevel()
     uCommitted_ = u_;
     fextCommitted_ = fextLast_;
     factorCommitted_ = factorLast_;
+    linearUpdateReady_ = false; // the history changed: the residual must be assembled anew
 }
 
 void StructuralSolver::rejectLevel()
 {
+    linearUpdateReady_ = false;
     u_ = uCommitted_;
     fextLast_ = fextCommitted_;
     factorLast_ = factorCommitted_;
@@ -632,6 +686,7 @@ void StructuralSolver::restoreCommittedState(const std::vector<CommittedState>& 
         const double* from = parts[where[c].first].history.data() + where[c].second;
         std::copy(from, from + count, committedHistory_.begin() + static_cast<std::ptrdiff_t>(pointOffset_[k] * hs));
     }
+    linearUpdateReady_ = false;
     uCommitted_ = u_ = parts[0].displacement;
     fextCommitted_ = fextLast_ = parts[0].externalForces;
     factorCommitted_ = factorLast_ = parts[0].loadFactor;

@@ -15,7 +15,8 @@
 //     solid.acceptLevel();                                 // commits material history + state
 //
 // Level semantics: solve() may be called any number of times for the same level; each call
-// starts from the last converged solution (warm start) and evaluates the material with the
+// starts from the last converged solution (warm start; for a linear problem -- small strain and
+// a law linear in the strain -- a re-solve with new loads only is a single back-substitution) and evaluates the material with the
 // history committed by the last acceptLevel(). acceptLevel() requires the last solve to have
 // converged (throws otherwise). Loads given to solve() REPLACE those of the previous call.
 #pragma once
@@ -164,6 +165,7 @@ public:
 private:
     SolveReport solveLevel(const material::TimeStep& step, const InterfaceLoads& interface,
                            double loadFactor);
+    bool linearUpdate(const std::vector<double>& fTarget, SolveReport& report);
     bool assemble(const std::vector<double>& u, bool withMatrix, std::vector<double>& fint);
     void buildExternalLoads(double factor, const InterfaceLoads& interface,
                             std::vector<double>& f) const;
@@ -205,6 +207,11 @@ private:
     double assemblySeconds_ = 0.0;
     double linearSeconds_ = 0.0;
     bool lastConverged_ = false;
+    // Small strain + a law linear in the strain: re-solves of a level with new loads only are
+    // one back-substitution with the level's factorization (linearUpdate).
+    bool linearProblem_ = false;
+    bool linearUpdateReady_ = false; // the last solve converged on this level's tangent
+    double lastResidual_ = 0.0;      // [N] of the last Newton iterate
 };
 
 } // namespace fsi::fe

@@ -5,6 +5,7 @@
 #include <metis.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <numeric>
 #include <stdexcept>
@@ -295,7 +296,99 @@ void SparseDirectSolver::factorize()
 
 void SparseDirectSolver::solve(std::vector<double>& rhsAndSolution)
 {
+    if (options_.reuseFactorization && options_.symmetric && factorized_ && !refreshFactor_)
+    {
+        int local[2] = {patternChanged_ ? 1 : 0, valuesChanged_ ? 1 : 0};
+        int global[2];
+        MPI_Allreduce(local, global, 2, MPI_INT, MPI_MAX, comm_);
+        if (!global[0] && global[1] && solveWithStaleFactor(rhsAndSolution))
+            return;
+    }
+    refreshFactor_ = false;
     factorize();
+    backSubstitute(rhsAndSolution);
+    ++solveCount_;
+}
+
+void SparseDirectSolver::multiply(std::vector<double>& x, std::vector<double>& y) const
+{
+    MPI_Bcast(x.data(), n_, MPI_DOUBLE, 0, comm_);
+    y.assign(n_, 0.0);
+    for (std::size_t k = 0; k < values_.size(); ++k)
+    {
+        const int i = rows_[k] - 1, j = cols_[k] - 1; // kept triplets are 1-based, lower triangle
+        y[i] += values_[k] * x[j];
+        if (i != j && options_.symmetric)
+            y[j] += values_[k] * x[i];
+    }
+    if (rankOf(comm_) == 0)
+        MPI_Reduce(MPI_IN_PLACE, y.data(), n_, MPI_DOUBLE, MPI_SUM, 0, comm_);
+    else
+        MPI_Reduce(y.data(), nullptr, n_, MPI_DOUBLE, MPI_SUM, 0, comm_);
+}
+
+bool SparseDirectSolver::solveWithStaleFactor(std::vector<double>& b)
+{
+    const bool root = rankOf(comm_) == 0;
+    std::vector<double> x(n_, 0.0), r, z, p(n_, 0.0), q;
+    auto dot = [&](const std::vector<double>& u, const std::vector<double>& v) {
+        double s = 0.0;
+        if (root)
+            for (int i = 0; i < n_; ++i)
+                s += u[i] * v[i];
+        MPI_Bcast(&s, 1, MPI_DOUBLE, 0, comm_);
+        return s;
+    };
+    if (root)
+        r = b;
+    else
+        r.assign(n_, 0.0);
+    const double bNorm = std::sqrt(dot(r, r));
+    if (!(bNorm > 0.0) || !std::isfinite(bNorm))
+        return false;
+    z = r;
+    backSubstitute(z);
+    double rz = dot(r, z);
+    if (root)
+        p = z;
+    for (int it = 1; it <= options_.reuseMaxIterations; ++it)
+    {
+        multiply(p, q);
+        const double pq = dot(p, q);
+        if (!(pq > 0.0) || !std::isfinite(pq))
+            return false; // indefinite or broken down: factorize instead
+        const double alpha = rz / pq;
+        if (root)
+            for (int i = 0; i < n_; ++i)
+            {
+                x[i] += alpha * p[i];
+                r[i] -= alpha * q[i];
+            }
+        const double rNorm = std::sqrt(dot(r, r));
+        if (rNorm <= options_.reuseTolerance * bNorm)
+        {
+            if (root)
+                b = x;
+            ++reusedSolves_;
+            reuseIterations_ += it;
+            ++solveCount_;
+            refreshFactor_ = it > options_.refactorAfterIterations;
+            return true;
+        }
+        z = r;
+        backSubstitute(z);
+        const double rzNext = dot(r, z);
+        const double beta = rzNext / rz;
+        rz = rzNext;
+        if (root)
+            for (int i = 0; i < n_; ++i)
+                p[i] = z[i] + beta * p[i];
+    }
+    return false;
+}
+
+void SparseDirectSolver::backSubstitute(std::vector<double>& rhsAndSolution)
+{
     DMUMPS_STRUC_C& id = handle_->id;
     int sizeOk = 1;
     if (rankOf(comm_) == 0)
@@ -316,7 +409,6 @@ void SparseDirectSolver::solve(std::vector<double>& rhsAndSolution)
         throw std::runtime_error(
             "SparseDirectSolver solve: MUMPS INFOG(1) = " + std::to_string(id.infog[0]) + ": " +
             meaning(id.infog[0], id.infog[1]));
-    ++solveCount_;
 }
 
 void SparseDirectSolver::solveSummedRhs(std::vector<double>& rhsAndSolution)

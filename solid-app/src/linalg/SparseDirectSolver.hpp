@@ -34,6 +34,15 @@ struct DirectSolverOptions
     int ordering = static_cast<int>(Ordering::Metis); // ICNTL(7)
     int memoryRelaxationPercent = 30;                 // ICNTL(14); raised on INFOG(1) = -9
     int verbosity = 0;                                // 0 silent ... 4 MUMPS diagnostics
+    // Symmetric only: when the values change but the pattern does not, first solve with
+    // conjugate gradients preconditioned by the existing (stale) factorization; factorize only
+    // when CG misses reuseTolerance within reuseMaxIterations, or needed more than
+    // refactorAfterIterations (the factor is then refreshed for the next solves). Pays when the
+    // matrix changes little between factorizations (a viscoelastic tangent whose dt changes).
+    bool reuseFactorization = false;
+    double reuseTolerance = 1e-10;    // |b - A x| <= tol |b|
+    int reuseMaxIterations = 25;
+    int refactorAfterIterations = 12;
 };
 
 // Collective on comm: every rank calls every method (and the destructor, which must run
@@ -83,6 +92,9 @@ public:
     int analysisCount() const { return analysisCount_; }
     int factorizationCount() const { return factorizationCount_; }
     int solveCount() const { return solveCount_; }
+    // Solves done by CG on a stale factorization (reuseFactorization) and their CG iterations.
+    int reusedSolveCount() const { return reusedSolves_; }
+    int reuseIterationCount() const { return reuseIterations_; }
     // Negative pivots of the last symmetric factorization (INFOG(12)); with an SPD
     // tangent expected, > 0 flags instability (buckling, limit point, inverted elements).
     int negativePivotCount() const { return negativePivots_; }
@@ -92,6 +104,12 @@ public:
     MPI_Comm communicator() const { return comm_; }
 
 private:
+    void backSubstitute(std::vector<double>& rhsAndSolution); // rank 0 data, collective
+    // y = A x with the current values (x significant on rank 0; y summed onto rank 0).
+    void multiply(std::vector<double>& x, std::vector<double>& y) const;
+    // CG preconditioned by the stale factorization; false (b untouched) when it misses the
+    // tolerance. Collective; b/x significant on rank 0.
+    bool solveWithStaleFactor(std::vector<double>& rhsAndSolution);
     struct Handle; // owns DMUMPS_STRUC_C (dmumps_c.h only in the .cpp)
     std::unique_ptr<Handle> handle_;
     MPI_Comm comm_;
@@ -110,6 +128,9 @@ private:
     int analysisCount_ = 0;
     int factorizationCount_ = 0;
     int solveCount_ = 0;
+    int reusedSolves_ = 0;
+    int reuseIterations_ = 0;
+    bool refreshFactor_ = false; // the last CG needed many iterations: factorize next time
     int negativePivots_ = 0;
     long long factorEntries_ = 0;
 };

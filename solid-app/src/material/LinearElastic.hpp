@@ -14,6 +14,7 @@ public:
     LinearElastic(double bulkModulus, double shearModulus); // [Pa], > 0
     std::string name() const override { return "linear-elastic"; }
     std::size_t historySize() const override { return 0; }
+    bool isLinearInStrain() const override { return true; }
     void evaluate(const Vector6& strain, const TimeStep& step, const double* committedHistory,
                   Vector6& stress, Matrix6& tangent) const override;
     void updateHistory(const Vector6&, const TimeStep&, const double*, double*) const override {}

@@ -69,6 +69,11 @@ public:
     virtual void updateHistory(const Vector6& strain, const TimeStep& step,
                                const double* committedHistory, double* newHistory) const = 0;
 
+    // True when the stress is affine in the strain for a fixed step and committed history (the
+    // tangent then depends on dt only): with small-strain kinematics the structural problem of a
+    // level is linear. Default false.
+    virtual bool isLinearInStrain() const { return false; }
+
     // Virgin (t = 0, unstrained) history; zeros by default.
     virtual void initialiseHistory(double* history) const;
 

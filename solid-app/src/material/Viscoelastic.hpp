@@ -34,6 +34,7 @@ public:
                  std::vector<double> tau);
     std::string name() const override { return "viscoelastic"; }
     std::size_t historySize() const override { return 6 * (gamma_.size() + 1); }
+    bool isLinearInStrain() const override { return true; }
     void evaluate(const Vector6& strain, const TimeStep& step, const double* committedHistory,
                   Vector6& stress, Matrix6& tangent) const override;
     void updateHistory(const Vector6& strain, const TimeStep& step, const double* committedHistory,

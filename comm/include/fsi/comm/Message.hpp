@@ -13,7 +13,7 @@ namespace comm
 {
 
 // Bumped whenever the header layout or the meaning of a kind's payload changes.
-constexpr std::int32_t kProtocolVersion = 1;
+constexpr std::int32_t kProtocolVersion = 2; // 2: Solve carries the fluid accuracy
 // "FSIC" as a little-endian 32-bit number; identifies our messages on the wire.
 constexpr std::int64_t kMessageMagic = 0x43495346;
 
@@ -23,9 +23,10 @@ constexpr std::int64_t kMessageMagic = 0x43495346;
 //                    text = program name
 //  HelloReply        handshake verdict: integers = [accepted 0|1], text = reason if rejected
 //  InterfaceGeometry values = coordinates or face data [m, m^2], layout agreed by the programs
-//  Solve             driver -> fluid: values = interface displacements [m]
+//  Solve             driver -> fluid: values = interface displacements [m], scalars = [time,
+//                    (force tolerance, residual drop)], integers = [(min SIMPLE iterations)]
 //  Forces            fluid -> driver: values = per-face forces [N], integers = [fluid
-//                    iterations], scalars = final fluid residuals
+//                    iterations, accuracy met 0|1], scalars = final fluid residuals
 //  Accept            driver -> fluid: time level converged, write output
 //  Finish            driver -> fluid: end of run, no payload
 //  Abort             either way: text = reason; the receiver throws PeerAbortError

@@ -1,0 +1,122 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// reuseFactorization: when the values of an SPD matrix change a little, the solve runs CG
+// preconditioned by the old factorization (no new factorization) and still meets the
+// tolerance; a large change falls back to a new factorization. Tridiagonal K(s) = K0 + s D
+// with K0 the 1-D Dirichlet Laplacian and D the identity (a stiffness whose one part scales, as
+// a viscoelastic tangent's deviatoric part does with dt). Any number of ranks (rows split).
+#include "linalg/SparseDirectSolver.hpp"
+
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <cmath>
+#include <vector>
+
+using namespace fsi::linalg;
+
+namespace
+{
+constexpr int n = 400;
+
+int rankOfWorld()
+{
+    int r = 0;
+    MPI_Comm_rank(MPI_COMM_WORLD, &r);
+    return r;
+}
+
+struct Matrix
+{
+    std::vector<int> rows, cols;
+    std::vector<double> values;
+};
+
+// This rank's rows (i % size == rank), full symmetric storage.
+Matrix matrix(double s)
+{
+    int rank = 0, size = 1;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    Matrix m;
+    for (int i = rank; i < n; i += size)
+    {
+        m.rows.push_back(i), m.cols.push_back(i), m.values.push_back(2.0 + s);
+        if (i > 0)
+            m.rows.push_back(i), m.cols.push_back(i - 1), m.values.push_back(-1.0);
+        if (i + 1 < n)
+            m.rows.push_back(i), m.cols.push_back(i + 1), m.values.push_back(-1.0);
+    }
+    return m;
+}
+
+// max |K(s) x - b| / |b|_inf for the rank-0 solution x (checked on rank 0).
+double residual(double s, const std::vector<double>& x, const std::vector<double>& b)
+{
+    double worst = 0.0, scale = 0.0;
+    for (int i = 0; i < n; ++i)
+    {
+        double y = (2.0 + s) * x[i];
+        if (i > 0)
+            y -= x[i - 1];
+        if (i + 1 < n)
+            y -= x[i + 1];
+        worst = std::max(worst, std::abs(y - b[i]));
+        scale = std::max(scale, std::abs(b[i]));
+    }
+    return worst / scale;
+}
+} // namespace
+
+TEST(FactorReuse, SmallChangeSolvesByCgOnTheOldFactor)
+{
+    DirectSolverOptions options;
+    options.reuseFactorization = true;
+    SparseDirectSolver solver(MPI_COMM_WORLD, options);
+    const double s0 = 0.1;
+    Matrix m = matrix(s0);
+    solver.setPattern(n, m.rows, m.cols);
+    solver.setValues(m.values);
+    std::vector<double> b(n);
+    for (int i = 0; i < n; ++i)
+        b[i] = std::sin(0.05 * i) + 1.0;
+    std::vector<double> x = b;
+    solver.solve(x);
+    EXPECT_EQ(solver.factorizationCount(), 1);
+    if (rankOfWorld() == 0)
+        EXPECT_LT(residual(s0, x, b), 1e-12);
+
+    // s changes by 5 %: CG on the old factor, a handful of iterations, no new factorization
+    const double s1 = 0.105;
+    solver.setValues(matrix(s1).values);
+    x = b;
+    solver.solve(x);
+    EXPECT_EQ(solver.factorizationCount(), 1);
+    EXPECT_EQ(solver.reusedSolveCount(), 1);
+    EXPECT_LE(solver.reuseIterationCount(), 6);
+    if (rankOfWorld() == 0)
+        EXPECT_LT(residual(s1, x, b), 1e-9);
+
+    // s x 100: CG on the stale factor does not meet the tolerance in time -> factorize
+    const double s2 = 10.0;
+    solver.setValues(matrix(s2).values);
+    x = b;
+    solver.solve(x);
+    EXPECT_EQ(solver.factorizationCount(), 2);
+    if (rankOfWorld() == 0)
+        EXPECT_LT(residual(s2, x, b), 1e-12);
+}
+
+TEST(FactorReuse, OffByDefault)
+{
+    SparseDirectSolver solver(MPI_COMM_WORLD);
+    Matrix m = matrix(0.1);
+    solver.setPattern(n, m.rows, m.cols);
+    solver.setValues(m.values);
+    std::vector<double> x(n, 1.0);
+    solver.solve(x);
+    solver.setValues(matrix(0.105).values);
+    x.assign(n, 1.0);
+    solver.solve(x);
+    EXPECT_EQ(solver.factorizationCount(), 2);
+    EXPECT_EQ(solver.reusedSolveCount(), 0);
+}
