@@ -86,6 +86,7 @@ int main(int argc, char* argv[])
         }
         scalar firstU = -1, firstP = -1;
         vector previousForce(Zero);
+        DynamicList<scalar> forceChanges;   // |F_k - F_k-1| of this solve
         for (label iter = 1; iter <= ctrl.maxIterations; ++iter)
         {
             ++runTime;
@@ -122,9 +123,27 @@ int main(int argc, char* argv[])
             if (ctrl.forceTolerance > 0)
             {
                 const vector F = coupling.interfaceForce();
-                forceOk =
-                    iter > 1 && mag(F - previousForce) <= ctrl.forceTolerance*mag(F);
+                const scalar change = mag(F - previousForce);
                 previousForce = F;
+                if (iter > 1)
+                {
+                    forceChanges.append(change);
+                }
+                scalar error = change;
+                if (ctrl.estimateError && iter > 1)
+                {
+                    // What is left of a linearly converging iteration: change rho/(1 - rho),
+                    // rho from the last three changes (0.9 until three are known), <= 0.98.
+                    const label m = forceChanges.size();
+                    scalar rho = 0.9;
+                    if (m >= 4 && forceChanges[m - 4] > VSMALL)
+                    {
+                        rho = Foam::pow(forceChanges[m - 1]/forceChanges[m - 4], 1.0/3.0);
+                    }
+                    rho = min(max(rho, scalar(0)), scalar(0.98));
+                    error = change*rho/(1 - rho);
+                }
+                forceOk = iter > 1 && error <= ctrl.forceTolerance*mag(F);
             }
             if (residualOk && forceOk && iter >= ctrl.minIterations)
             {

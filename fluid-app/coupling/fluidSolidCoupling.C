@@ -560,6 +560,7 @@ Foam::fluidSolidCoupling::SolveControls Foam::fluidSolidCoupling::askedControls
     c.forceTolerance = solve.forceTolerance;
     c.residualDrop = solve.residualDrop;
     c.residualRequired = solve.residualDrop > 0;
+    c.estimateError = true;
     return c;
 }
 

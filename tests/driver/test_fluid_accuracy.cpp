@@ -65,14 +65,34 @@ TEST(ForcingTerm, InvalidParametersNameTheKey)
     }
 }
 
-// Constant cost per simulated second: the estimate is exact, however the levels are spaced.
-TEST(ProgressClock, RemainingTimeFollowsTheCostPerSimulatedSecond)
+// Constant steps and constant cost per level: the estimate is the simulated time to go times
+// the cost per simulated second, exactly.
+TEST(ProgressClock, ConstantStepsGiveTheCostPerSimulatedSecond)
 {
     ProgressClock clock(3);
-    EXPECT_LT(clock.remaining(100.0), 0.0); // unknown before two levels
-    const double costPerSecond = 2.5;       // wall seconds per simulated second
-    for (double t : {0.0, 1.0, 3.0, 7.0, 15.0})
-        clock.levelDone(t, 10.0 + costPerSecond * t);
-    EXPECT_NEAR(clock.remaining(100.0), costPerSecond * 85.0, 1e-9);
-    EXPECT_DOUBLE_EQ(clock.remaining(15.0), 0.0);
+    clock.levelDone(0.0, 0.0, 5.0);
+    EXPECT_LT(clock.remaining(100.0, 0.0), 0.0); // unknown before a level with dt > 0
+    for (int k = 1; k <= 5; ++k)
+        clock.levelDone(2.0 * k, 2.0, 5.0 + 3.0 * k); // 3 s per level of 2 s
+    EXPECT_NEAR(clock.remaining(100.0, 0.0), 1.5 * 90.0, 1e-9);
+    EXPECT_DOUBLE_EQ(clock.remaining(10.0, 0.0), 0.0);
+}
+
+// Steps doubling each level at a constant cost per level: the levels left are counted with the
+// growth (capped by max_step), not the early cost per simulated second (which would say 50x
+// more here).
+TEST(ProgressClock, GrowingStepsCountTheLevelsLeft)
+{
+    ProgressClock clock(3);
+    clock.levelDone(0.0, 0.0, 0.0);
+    double t = 0.0, dt = 1.0;
+    for (int k = 1; k <= 4; ++k, dt *= 2) // t = 1, 3, 7, 15 after steps 1, 2, 4, 8
+    {
+        t += dt;
+        clock.levelDone(t, dt, 10.0 * k);
+    }
+    // next steps 16, 32, 64 (-> 127), then capped at 100: 227, 327, 427 >= 400: 6 levels
+    EXPECT_NEAR(clock.remaining(400.0, 100.0), 6 * 10.0, 1e-9);
+    // unlimited: 16, 32, 64, 128, 256 (-> 511): 5 levels
+    EXPECT_NEAR(clock.remaining(400.0, 0.0), 5 * 10.0, 1e-9);
 }

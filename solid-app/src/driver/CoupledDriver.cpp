@@ -486,8 +486,8 @@ void CoupledDriver::Impl::acceptLevel(LevelRecord& record, double levelSeconds, 
         callback(record);
     summary.history.push_back(record);
     summary.levels += 1;
-    progress.levelDone(record.time, record.wallSeconds);
-    const double eta = schedule.hasNext() ? progress.remaining(schedule.endTime()) : -1.0;
+    progress.levelDone(record.time, record.dt, record.wallSeconds);
+    const double eta = schedule.hasNext() ? progress.remaining(schedule.endTime(), schedule.maxStep()) : -1.0;
     log.level(record, record.probes, probeText, levelSeconds, eta);
 
     uBeforeLast = uLast;

@@ -3,6 +3,7 @@
 
 #include "driver/CoupledDriver.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -13,23 +14,35 @@
 namespace fsi::driver
 {
 
-void ProgressClock::levelDone(double time, double wallSeconds)
+void ProgressClock::levelDone(double time, double dt, double wallSeconds)
 {
     times_.push_back(time);
+    steps_.push_back(dt);
     walls_.push_back(wallSeconds);
 }
 
-double ProgressClock::remaining(double endTime) const
+double ProgressClock::remaining(double endTime, double maxStep) const
 {
     const int n = static_cast<int>(times_.size());
     if (n < 2)
         return -1.0;
-    const int first = std::max(0, n - 1 - window_);
-    const double simulated = times_.back() - times_[first];
-    if (!(simulated > 0.0))
+    const int first = std::max(1, n - 1 - window_); // level 0 (dt = 0) does not count
+    const int levels = n - 1 - first;
+    if (levels < 1 || !(steps_[first] > 0.0))
         return -1.0;
-    const double costPerSecond = (walls_.back() - walls_[first]) / simulated;
-    return std::max(0.0, endTime - times_.back()) * costPerSecond;
+    const double costPerLevel = (walls_.back() - walls_[first]) / levels;
+    const double growth = std::clamp(std::pow(steps_.back() / steps_[first], 1.0 / levels), 1.0, 10.0);
+    double t = times_.back(), dt = steps_.back();
+    int left = 0;
+    while (t < endTime * (1 - 1e-12) && left < 100000)
+    {
+        dt *= growth;
+        if (maxStep > 0.0)
+            dt = std::min(dt, maxStep);
+        t += dt;
+        ++left;
+    }
+    return left * costPerLevel;
 }
 
 CouplingLog::CouplingLog(std::string folder, int rank, std::vector<std::string> probeColumns)

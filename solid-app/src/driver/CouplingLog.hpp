@@ -38,20 +38,24 @@ struct IterationLine
     std::string note;
 };
 
-// Remaining wall time from the simulated time still to go and the recent cost per simulated
-// second (the last `window` levels), not per level: levels late in a run cover more time.
+// Remaining wall time of a run: the levels still needed to reach the end time if the step keeps
+// growing as it did over the last `window` levels (at most to maxStep), times the recent wall
+// time per level. With a constant step this is the simulated time to go times the recent cost
+// per simulated second; with geometrically growing steps it counts the (few) large levels left
+// instead of extrapolating the cost of the small early ones.
 class ProgressClock
 {
 public:
     explicit ProgressClock(int window = 3) : window_(window) {}
-    // A level reached simulated time `time` [s] after `wallSeconds` of wall time in all.
-    void levelDone(double time, double wallSeconds);
-    // Estimated wall seconds until `endTime`; negative when unknown (fewer than two levels).
-    double remaining(double endTime) const;
+    // A level of step dt [s] reached simulated time `time` [s] after `wallSeconds` in all.
+    void levelDone(double time, double dt, double wallSeconds);
+    // Estimated wall seconds until `endTime`; maxStep [s] caps the step (0: none); negative
+    // when unknown (fewer than two levels).
+    double remaining(double endTime, double maxStep) const;
 
 private:
     int window_;
-    std::vector<double> times_, walls_;
+    std::vector<double> times_, steps_, walls_;
 };
 
 class CouplingLog

@@ -60,8 +60,9 @@ public:
     // time; level() increases by one.
     double advance(double relativeChangeOfLastLevel,
                    double pathErrorOfLastLevel = std::numeric_limits<double>::quiet_NaN());
-    // Last time of the schedule [s] (0 for steady).
+    // Last time of the schedule [s] (0 for steady) and the largest step (0: unlimited) [s].
     double endTime() const;
+    double maxStep() const { return params_.maxStep; }
     double lastStep() const { return lastStep_; }
     // Number of levels when known in advance (steady, list, geometric); -1 for adaptive.
     int plannedLevels() const;
