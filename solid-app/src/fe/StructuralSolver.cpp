@@ -165,6 +165,7 @@ StructuralSolver::StructuralSolver(MPI_Comm comm, const mesh::Mesh& mesh,
     u_.assign(nDofs, 0.0);
     uCommitted_ = u_;
     fextCommitted_.assign(nDofs, 0.0);
+    fintAtU_ = fextAtU_ = fintCommitted_ = fextCommitted_;
 }
 
 StructuralSolver::~StructuralSolver() = default;
@@ -368,7 +369,10 @@ bool StructuralSolver::newton(const std::vector<double>& fext, double factor,
         report.referenceForce = ref;
         report.finalResidual = norm;
         if (norm <= nw.residualTolerance * ref + nw.absoluteTolerance)
+        {
+            fintConverged_ = fint; // the last assembly was at u
             return true;
+        }
         if (it >= nw.maxIterations)
         {
             char text[160];
@@ -489,10 +493,18 @@ SolveReport StructuralSolver::solveLevel(const material::TimeStep& step,
     std::vector<double> u = lastConverged_ ? u_ : uCommitted_;
     fextLast_ = fTarget;
     factorLast_ = loadFactor;
+    const auto converged = [&](std::vector<double>& solution)
+    {
+        u_.swap(solution);
+        fintAtU_ = fintConverged_;
+        fextAtU_ = fTarget;
+        solvedStep_ = step;
+        atAcceptedState_ = false;
+        lastConverged_ = true;
+    };
     if (newton(fTarget, loadFactor, u, report))
     {
-        u_ = u;
-        lastConverged_ = true;
+        converged(u);
         report.converged = true;
         return report;
     }
@@ -522,8 +534,7 @@ SolveReport StructuralSolver::solveLevel(const material::TimeStep& step,
         }
         if (ok)
         {
-            u_ = u;
-            lastConverged_ = true;
+            converged(u);
             report.converged = true;
             report.loadCuts = cuts;
             report.newtonIterations = iterations;
@@ -572,6 +583,8 @@ void StructuralSolver::acceptLevel()
     uCommitted_ = u_;
     fextCommitted_ = fextLast_;
     factorCommitted_ = factorLast_;
+    fintCommitted_ = fintAtU_;
+    atAcceptedState_ = true;
 }
 
 void StructuralSolver::rejectLevel()
@@ -579,6 +592,9 @@ void StructuralSolver::rejectLevel()
     u_ = uCommitted_;
     fextLast_ = fextCommitted_;
     factorLast_ = factorCommitted_;
+    fintAtU_ = fintCommitted_;
+    fextAtU_ = fextCommitted_;
+    atAcceptedState_ = true;
     lastConverged_ = true;
 }
 
@@ -635,6 +651,10 @@ void StructuralSolver::restoreCommittedState(const std::vector<CommittedState>& 
     uCommitted_ = u_ = parts[0].displacement;
     fextCommitted_ = fextLast_ = parts[0].externalForces;
     factorCommitted_ = factorLast_ = parts[0].loadFactor;
+    fextAtU_ = fextCommitted_;
+    fintAtU_.assign(nDofs, std::nan("")); // not checkpointed: known after the next solve
+    fintCommitted_ = fintAtU_;
+    atAcceptedState_ = true;
     lastConverged_ = true;
 }
 
@@ -656,67 +676,137 @@ std::vector<double> StructuralSolver::wettedNodeDisplacements() const
     return d;
 }
 
-void StructuralSolver::cauchyStress(std::vector<Vector6>& nodal,
-                                    std::vector<Vector6>& cellStress) const
+Vector6 StructuralSolver::pointStress(std::size_t k, int q, const Vector6& strain) const
 {
-    const auto& cells = mesh_.cells;
     const std::size_t hs = law_.historySize();
-    std::vector<double> nodeSum(7 * mesh_.numNodes(), 0.0), cellSum(6 * cells.size(), 0.0);
+    const double* history =
+        hs ? committedHistory_.data() + static_cast<std::size_t>(pointOffset_[k] + q) * hs
+           : nullptr;
+    if (atAcceptedState_) // committedHistory_ already holds this level's increment
+        return law_.acceptedStress(strain, history);
     Vector6 stress;
     material::Matrix6 D;
+    law_.evaluate(strain, solvedStep_, history, stress, D);
+    return stress;
+}
+
+void StructuralSolver::accumulateFields(const std::vector<char>& cellFilter,
+                                        std::vector<double>& nodeSum,
+                                        std::vector<double>* cellSum) const
+{
+    const auto& cells = mesh_.cells;
+    nodeSum.assign(13 * static_cast<std::size_t>(mesh_.numNodes()), 0.0);
+    if (cellSum)
+        cellSum->assign(6 * static_cast<std::size_t>(cells.size()), 0.0);
     for (std::size_t k = 0; k < ownCells_.size(); ++k)
     {
         const int c = ownCells_[k];
+        if (!cellFilter.empty() && !cellFilter[c])
+            continue;
         const int n = cells.numNodes(c);
         CellQuadrature cq{n, pointOffset_[k + 1] - pointOffset_[k], quad_.data() + quadOffset_[k]};
         Eigen::Matrix3Xd ue(3, n);
         for (int a = 0; a < n; ++a)
             for (int i = 0; i < 3; ++i)
                 ue(i, a) = u_[3 * cells.nodes(c)[a] + i];
-        Vector6 mean = Vector6::Zero();
+        Vector6 meanStress = Vector6::Zero(), meanStrain = Vector6::Zero();
         double volume = 0.0;
         for (int q = 0; q < cq.numPoints; ++q)
         {
             const Eigen::Matrix3d H = displacementGradient(cq, q, ue);
             const Eigen::Matrix3d F = Eigen::Matrix3d::Identity() + H;
+            Vector6 strain = strainFromH(H, problem_.kinematics);
+            Vector6 stress;
             try
             {
-                law_.evaluate(strainFromH(H, problem_.kinematics), step_,
-                              hs ? committedHistory_.data() + (pointOffset_[k] + q) * hs : nullptr,
-                              stress, D);
+                stress = pointStress(k, q, strain);
             }
             catch (const material::InadmissibleDeformation&)
             {
                 stress.setConstant(std::nan(""));
             }
-            mean += cq.weight(q) * cauchyFromMaterialStress(stress, F, problem_.kinematics);
+            strain.tail<3>() *= 0.5; // engineering -> tensor shear
+            meanStress += cq.weight(q) * cauchyFromMaterialStress(stress, F, problem_.kinematics);
+            meanStrain += cq.weight(q) * strain;
             volume += cq.weight(q);
         }
-        for (int i = 0; i < 6; ++i)
-            cellSum[6 * c + i] = mean[i] / volume;
+        if (cellSum)
+            for (int i = 0; i < 6; ++i)
+                (*cellSum)[6 * c + i] = meanStress[i] / volume;
         for (int a = 0; a < n; ++a)
         {
+            double* sum = nodeSum.data() + 13 * static_cast<std::size_t>(cells.nodes(c)[a]);
             for (int i = 0; i < 6; ++i)
-                nodeSum[7 * cells.nodes(c)[a] + i] += mean[i];
-            nodeSum[7 * cells.nodes(c)[a] + 6] += volume;
+            {
+                sum[i] += meanStress[i];
+                sum[6 + i] += meanStrain[i];
+            }
+            sum[12] += volume;
         }
     }
     if (size_ > 1)
     {
         MPI_Allreduce(MPI_IN_PLACE, nodeSum.data(), static_cast<int>(nodeSum.size()), MPI_DOUBLE,
                       MPI_SUM, comm_);
-        MPI_Allreduce(MPI_IN_PLACE, cellSum.data(), static_cast<int>(cellSum.size()), MPI_DOUBLE,
-                      MPI_SUM, comm_);
+        if (cellSum)
+            MPI_Allreduce(MPI_IN_PLACE, cellSum->data(), static_cast<int>(cellSum->size()),
+                          MPI_DOUBLE, MPI_SUM, comm_);
     }
+}
+
+void StructuralSolver::cauchyStress(std::vector<Vector6>& nodal,
+                                    std::vector<Vector6>& cellStress) const
+{
+    std::vector<double> nodeSum, cellSum;
+    accumulateFields({}, nodeSum, &cellSum);
     nodal.assign(mesh_.numNodes(), Vector6::Zero());
-    cellStress.assign(cells.size(), Vector6::Zero());
+    cellStress.assign(mesh_.cells.size(), Vector6::Zero());
     for (int node = 0; node < mesh_.numNodes(); ++node)
-        for (int i = 0; i < 6; ++i)
-            nodal[node][i] =
-                nodeSum[7 * node + 6] > 0 ? nodeSum[7 * node + i] / nodeSum[7 * node + 6] : 0.0;
-    for (int c = 0; c < cells.size(); ++c)
+        if (nodeSum[13 * node + 12] > 0.0)
+            for (int i = 0; i < 6; ++i)
+                nodal[node][i] = nodeSum[13 * node + i] / nodeSum[13 * node + 12];
+    for (int c = 0; c < mesh_.cells.size(); ++c)
         for (int i = 0; i < 6; ++i)
             cellStress[c][i] = cellSum[6 * c + i];
+}
+
+std::vector<StructuralSolver::NodalStressStrain>
+StructuralSolver::stressAndStrainAt(const std::vector<int>& nodes) const
+{
+    const auto& cells = mesh_.cells;
+    std::vector<char> wanted(mesh_.numNodes(), 0), cellFilter(cells.size(), 0);
+    for (int node : nodes)
+    {
+        if (node < 0 || node >= mesh_.numNodes())
+            throw std::out_of_range("StructuralSolver::stressAndStrainAt: node " +
+                                    std::to_string(node) + " is not a node of the mesh");
+        wanted[node] = 1;
+    }
+    for (int c = 0; c < cells.size(); ++c)
+        for (int a = 0; a < cells.numNodes(c) && !cellFilter[c]; ++a)
+            cellFilter[c] = wanted[cells.nodes(c)[a]];
+    std::vector<double> nodeSum;
+    accumulateFields(cellFilter, nodeSum, nullptr);
+    std::vector<NodalStressStrain> out(nodes.size());
+    for (std::size_t k = 0; k < nodes.size(); ++k)
+    {
+        const double* sum = nodeSum.data() + 13 * static_cast<std::size_t>(nodes[k]);
+        for (int i = 0; i < 6; ++i)
+        {
+            out[k].stress[i] = sum[12] > 0.0 ? sum[i] / sum[12] : 0.0;
+            out[k].strain[i] = sum[12] > 0.0 ? sum[6 + i] / sum[12] : 0.0;
+        }
+    }
+    return out;
+}
+
+Eigen::Vector3d StructuralSolver::reactionForce(const std::string& surface) const
+{
+    Eigen::Vector3d r = Eigen::Vector3d::Zero();
+    for (int node : mesh_.surface(surface).nodes)
+        for (int i = 0; i < 3; ++i)
+            r[i] += fintAtU_[3 * node + i] - fextAtU_[3 * node + i];
+    return r;
 }
 
 } // namespace fsi::fe

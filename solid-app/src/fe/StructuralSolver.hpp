@@ -147,10 +147,34 @@ public:
     std::vector<double> wettedNodeCoordinates() const;             // 3 per node [m]
     std::vector<double> wettedNodeDisplacements() const;           // 3 per node [m]
     const std::vector<int>& wettedNodes() const { return wettedNodes_; }
-    // Nodal (volume-averaged) and cell-averaged Cauchy stress, Voigt tensor shear [Pa], at the
-    // last solved state; replicated on every rank.
+    // --- Results of the CURRENT state: the last converged solve, or, after acceptLevel() /
+    // rejectLevel() / restoreCommittedState(), the last accepted level. An accepted level's
+    // stress is that of its own solve (its history increment included): evaluating it after the
+    // commit does not re-apply the level's relaxation step. Collective; replicated on every rank.
+
+    // Nodal (volume-averaged) and cell-averaged Cauchy (true) stress, Voigt order xx yy zz xy yz
+    // xz, tensor shear [Pa]. Small strain: the stress of the law; total Lagrangian:
+    // sigma = J^-1 F S F^T, in the deformed configuration, given at the reference nodes/cells.
     void cauchyStress(std::vector<material::Vector6>& nodal,
                       std::vector<material::Vector6>& cells) const;
+
+    struct NodalStressStrain
+    {
+        material::Vector6 stress; // Cauchy [Pa], as cauchyStress()
+        material::Vector6 strain; // [-], tensor shear (eps_xy, not gamma_xy): small strain eps,
+                                  // total Lagrangian Green-Lagrange E (reference configuration)
+    };
+    // Volume averages over the cells around each of `nodes` (node ids of the mesh), computed on
+    // those cells only (cheap for a few watch points).
+    std::vector<NodalStressStrain> stressAndStrainAt(const std::vector<int>& nodes) const;
+
+    // Reaction force [N] on a surface group: the sum over its nodes of f_int - f_ext, the force
+    // the supports exert on the body there (a node in two groups counts in both). For a clamped
+    // group in equilibrium it balances the loads: sum over all supports = -(total load). On free
+    // dofs the sum is the equilibrium residual (about 0). Throws std::runtime_error for a name
+    // that is not a group of the mesh. After restoreCommittedState() it is NaN until the next
+    // solve (the internal forces are not checkpointed).
+    Eigen::Vector3d reactionForce(const std::string& surface) const;
 
     const mesh::Mesh& mesh() const { return mesh_; }
     int numDofs() const { return 3 * mesh_.numNodes(); }
@@ -171,6 +195,12 @@ private:
     bool newton(const std::vector<double>& fext, double factor, std::vector<double>& u,
                 SolveReport& report);
     double freeNorm(const std::vector<double>& v) const;
+    // Material stress (law's measure) at integration point q of own cell k for the current state.
+    material::Vector6 pointStress(std::size_t k, int q, const material::Vector6& strain) const;
+    // Volume-weighted sums over own cells (all if cellFilter is empty) of the Cauchy stress and
+    // strain; collective. nodal: 13 per node (stress 6, strain 6, volume); cellMeans: 6 per cell.
+    void accumulateFields(const std::vector<char>& cellFilter, std::vector<double>& nodal,
+                          std::vector<double>* cellMeans) const;
 
     MPI_Comm comm_;
     int rank_ = 0, size_ = 1;
@@ -205,6 +235,13 @@ private:
     double assemblySeconds_ = 0.0;
     double linearSeconds_ = 0.0;
     bool lastConverged_ = false;
+    // The current state u_ is an accepted level (stress from the accepted history) or the last
+    // converged solve at solvedStep_ (stress from the committed history and the step).
+    bool atAcceptedState_ = true;
+    material::TimeStep solvedStep_{};
+    std::vector<double> fintConverged_;         // f_int of the last converged Newton solve [N]
+    std::vector<double> fintAtU_, fextAtU_;     // f_int, f_ext of the current state [N]
+    std::vector<double> fintCommitted_;         // ... of the last accepted level
 };
 
 } // namespace fsi::fe
