@@ -332,8 +332,27 @@ bool StructuralSolver::assemble(const std::vector<double>& u, bool withMatrix,
     return true;
 }
 
+bool StructuralSolver::newtonWithPolicy(const std::vector<double>& fext, double factor,
+                                        std::vector<double>& u, SolveReport& report)
+{
+    const LineSearch policy = problem_.newton.lineSearch;
+    if (policy != LineSearch::Fallback)
+        return newton(fext, factor, u, report, policy == LineSearch::Always);
+    const std::vector<double> start = u;
+    if (newton(fext, factor, u, report, false))
+        return true;
+    const int plainIterations = report.newtonIterations;
+    if (problem_.printIterations && rank_ == 0)
+        std::printf("    %s -> retrying with the line search\n", report.message.c_str());
+    u = start;
+    report.newtonIterations = 0;
+    const bool ok = newton(fext, factor, u, report, true);
+    report.newtonIterations += plainIterations;
+    return ok;
+}
+
 bool StructuralSolver::newton(const std::vector<double>& fext, double factor,
-                              std::vector<double>& u, SolveReport& report)
+                              std::vector<double>& u, SolveReport& report, bool lineSearch)
 {
     const auto& nw = problem_.newton;
     applyPrescribed(factor, u);
@@ -422,7 +441,7 @@ bool StructuralSolver::newton(const std::vector<double>& fext, double factor,
                 "Newton stalled: every step along the Newton direction is inadmissible";
             return false;
         }
-        if (nw.lineSearch && s0 > 0.0)
+        if (lineSearch && s0 > 0.0)
         {
             double sAlpha = directional();
             for (int k = 0; k < 5 && std::abs(sAlpha) > 0.5 * s0; ++k)
@@ -502,7 +521,7 @@ SolveReport StructuralSolver::solveLevel(const material::TimeStep& step,
         atAcceptedState_ = false;
         lastConverged_ = true;
     };
-    if (newton(fTarget, loadFactor, u, report))
+    if (newtonWithPolicy(fTarget, loadFactor, u, report))
     {
         converged(u);
         report.converged = true;
@@ -525,7 +544,8 @@ SolveReport StructuralSolver::solveLevel(const material::TimeStep& step,
             for (int dof = 0; dof < numDofs(); ++dof)
                 f[dof] = fextCommitted_[dof] + lambda * (fTarget[dof] - fextCommitted_[dof]);
             SolveReport sub;
-            ok = newton(f, factorCommitted_ + lambda * (loadFactor - factorCommitted_), u, sub);
+            ok = newtonWithPolicy(f, factorCommitted_ + lambda * (loadFactor - factorCommitted_),
+                                  u, sub);
             iterations += sub.newtonIterations;
             report.residuals = sub.residuals;
             report.finalResidual = sub.finalResidual;

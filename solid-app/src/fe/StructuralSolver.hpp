@@ -36,12 +36,26 @@
 namespace fsi::fe
 {
 
+// Energy line search (Crisfield: secant on s(alpha) = du . R(u + alpha du)):
+//   Fallback  full Newton steps first; only if that attempt fails (stall, divergence,
+//             inadmissible step) the same start is retried with the line search. Where plain
+//             Newton converges it takes the same iterations (slender finite-strain problems:
+//             the line search would shorten good steps whose residual grows on the way).
+//   Always    the line search on every step.
+//   Never     plain Newton (then load cuts).
+enum class LineSearch
+{
+    Fallback,
+    Always,
+    Never
+};
+
 struct NewtonSettings
 {
     int maxIterations = 25;
     double residualTolerance = 1e-8;  // ||R_free|| <= rtol * max(||f_ext||, ||f_int||) + atol
     double absoluteTolerance = 1e-10; // [N]
-    bool lineSearch = true;           // backtracking on ||R|| (halving, up to 1/16)
+    LineSearch lineSearch = LineSearch::Fallback;
     int maxLoadCuts = 6;              // failed level: retry in 2, 4, ... 2^k load sub-steps
 };
 
@@ -193,7 +207,10 @@ private:
                             std::vector<double>& f) const;
     void applyPrescribed(double factor, std::vector<double>& u) const;
     bool newton(const std::vector<double>& fext, double factor, std::vector<double>& u,
-                SolveReport& report);
+                SolveReport& report, bool lineSearch);
+    // newton() with the configured line-search policy (Fallback: plain, then line search).
+    bool newtonWithPolicy(const std::vector<double>& fext, double factor, std::vector<double>& u,
+                          SolveReport& report);
     double freeNorm(const std::vector<double>& v) const;
     // Material stress (law's measure) at integration point q of own cell k for the current state.
     material::Vector6 pointStress(std::size_t k, int q, const material::Vector6& strain) const;
