@@ -75,3 +75,27 @@ TEST(NewtonSlender, DefaultIsNoWorseThanPlainNewton)
     EXPECT_NEAR(byDefault.tipDeflection, plain.tipDeflection, 1e-6);
     EXPECT_NEAR(byDefault.tipDeflection, 0.81, 0.05);
 }
+
+// A block crushed beyond the St Venant-Kirchhoff limit load has no admissible equilibrium; full
+// Newton steps reach a mirrored (inverted, det F < 0) one, which must not count as converged.
+TEST(NewtonSlender, InvertedEquilibriumIsNotAccepted)
+{
+    fsi::testing::BlockSpec spec;
+    spec.cells = {1, 1, 1};
+    const auto file = fsi::testing::makeBlockMesh(fsi::testing::tempFile("crush.msh"),
+                                                  fsi::testing::TestCell::Tet10, spec);
+    const mesh::Mesh m = mesh::readGmsh(file, {"solid", {"x0", "x1"}}, true);
+    const auto law = material::makeMaterial(fsi::testing::elastic(1e6, 0.3),
+                                            material::Kinematics::TotalLagrangian);
+    fe::ProblemDefinition p;
+    p.kinematics = material::Kinematics::TotalLagrangian;
+    p.clamped = {"x0"};
+    p.tractions.push_back({"x1", Eigen::Vector3d(-5e6, 0, 0)});
+    p.newton.lineSearch = fe::LineSearch::Never;
+    p.newton.maxLoadCuts = 0;
+    fe::StructuralSolver solver(MPI_COMM_WORLD, m, *law, p);
+    const auto report = solver.solve({0.0, 0.0});
+    std::printf("crushed block: %s\n", report.message.c_str());
+    EXPECT_FALSE(report.converged);
+    EXPECT_THROW(solver.acceptLevel(), std::runtime_error);
+}

@@ -332,6 +332,28 @@ bool StructuralSolver::assemble(const std::vector<double>& u, bool withMatrix,
     return true;
 }
 
+bool StructuralSolver::admissible(const std::vector<double>& u) const
+{
+    if (problem_.kinematics != Kinematics::TotalLagrangian)
+        return true;
+    const auto& cells = mesh_.cells;
+    int ok = 1;
+    for (std::size_t k = 0; k < ownCells_.size() && ok; ++k)
+    {
+        const int c = ownCells_[k];
+        const int n = cells.numNodes(c);
+        CellQuadrature cq{n, pointOffset_[k + 1] - pointOffset_[k], quad_.data() + quadOffset_[k]};
+        Eigen::Matrix3Xd ue(3, n);
+        for (int a = 0; a < n; ++a)
+            for (int i = 0; i < 3; ++i)
+                ue(i, a) = u[3 * cells.nodes(c)[a] + i];
+        for (int q = 0; q < cq.numPoints && ok; ++q)
+            ok = (Eigen::Matrix3d::Identity() + displacementGradient(cq, q, ue)).determinant() > 0.0;
+    }
+    MPI_Allreduce(MPI_IN_PLACE, &ok, 1, MPI_INT, MPI_MIN, comm_);
+    return ok != 0;
+}
+
 bool StructuralSolver::newtonWithPolicy(const std::vector<double>& fext, double factor,
                                         std::vector<double>& u, SolveReport& report)
 {
@@ -389,6 +411,11 @@ bool StructuralSolver::newton(const std::vector<double>& fext, double factor,
         report.finalResidual = norm;
         if (norm <= nw.residualTolerance * ref + nw.absoluteTolerance)
         {
+            if (!admissible(u))
+            {
+                report.message = "Newton converged to an inverted configuration (det F <= 0)";
+                return false;
+            }
             fintConverged_ = fint; // the last assembly was at u
             return true;
         }

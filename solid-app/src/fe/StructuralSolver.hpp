@@ -212,6 +212,10 @@ private:
     bool newtonWithPolicy(const std::vector<double>& fext, double factor, std::vector<double>& u,
                           SolveReport& report);
     double freeNorm(const std::vector<double>& v) const;
+    // Total Lagrangian: det F > 0 at every integration point of every cell (collective). A
+    // law without its own check (St Venant-Kirchhoff) has equilibria in inverted configurations
+    // that full Newton steps can reach.
+    bool admissible(const std::vector<double>& u) const;
     // Material stress (law's measure) at integration point q of own cell k for the current state.
     material::Vector6 pointStress(std::size_t k, int q, const material::Vector6& strain) const;
     // Volume-weighted sums over own cells (all if cellFilter is empty) of the Cauchy stress and
