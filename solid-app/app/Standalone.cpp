@@ -105,9 +105,9 @@ fe::ProblemDefinition problemFromConfig(const config::SolidConfig& c)
     p.newton.maxIterations = c.newton.maxIterations;
     p.newton.residualTolerance = c.newton.residualTolerance;
     p.newton.absoluteTolerance = c.newton.absoluteTolerance;
-    p.newton.lineSearch = c.newton.lineSearch == "always" ? fe::LineSearch::Always
-                          : c.newton.lineSearch == "never"  ? fe::LineSearch::Never
-                                                            : fe::LineSearch::Fallback;
+    p.newton.lineSearch = c.newton.lineSearch == "always"  ? fe::LineSearch::Always
+                          : c.newton.lineSearch == "never" ? fe::LineSearch::Never
+                                                           : fe::LineSearch::Fallback;
     p.newton.maxLoadCuts = c.newton.maxLoadCuts;
     p.linearSolverVerbosity = c.solverVerbosity;
     return p;
@@ -257,8 +257,7 @@ int runStandalone(const RunOptions& options)
             char row[256];
             std::snprintf(row, sizeof row, "%zu,%.10g,%.10g,%.10g,%d,%d,%.6e,%d,%.3f\n", n,
                           levelStep.time, levelStep.dt, factor, report.newtonIterations,
-                          report.loadCuts, report.finalResidual, solver.factorizationCount(),
-                          wall);
+                          report.loadCuts, report.finalResidual, solver.factorizationCount(), wall);
             levels += row;
             io::writeFileAtomically((fs::path(out) / "levels.csv").string(), levels);
         }

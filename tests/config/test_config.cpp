@@ -154,10 +154,11 @@ TEST(SolidConfig, ListGeometricAndAdaptiveSchedules)
     EXPECT_LT(t.size(), 30u);
     for (std::size_t i = 1; i < t.size(); ++i)
         EXPECT_GT(t[i], t[i - 1]);
-    // adaptive: step control and landing; first_step from the Prony times when omitted
+    // adaptive: step control and landing on the hit and end times
     const auto ad = SolidConfig::load(
-        write(std::string(valid) + "  time: {type: adaptive, end: 50, first_step: 0.5, target_change: 0.1, "
-                                   "max_step: 20, hit: [7]}\n"));
+        write(std::string(valid) +
+              "  time: {type: adaptive, end: 50, first_step: 0.5, target_change: 0.1, "
+              "max_step: 20, hit: [7]}\n"));
     EXPECT_TRUE(ad.time.levels().empty());
     EXPECT_DOUBLE_EQ(ad.time.nextStep(1.0, 0.0), 2.0);   // no change: growth_limit
     EXPECT_DOUBLE_EQ(ad.time.nextStep(1.0, 0.05), 2.0);  // half the target: doubled (limit 2)
@@ -166,7 +167,7 @@ TEST(SolidConfig, ListGeometricAndAdaptiveSchedules)
     EXPECT_DOUBLE_EQ(ad.time.nextStep(15.0, 0.0), 20.0); // max_step
     EXPECT_DOUBLE_EQ(ad.time.nextTime(5.0, 3.0), 7.0);   // lands on the hit
     EXPECT_DOUBLE_EQ(ad.time.nextTime(6.5, 0.4), 6.9);
-    EXPECT_DOUBLE_EQ(ad.time.nextTime(6.5, 0.45), 7.0);  // a sliver of 0.05 < 0.2 step: stretched
+    EXPECT_DOUBLE_EQ(ad.time.nextTime(6.5, 0.45), 7.0); // a sliver of 0.05 < 0.2 step: stretched
     EXPECT_DOUBLE_EQ(ad.time.nextTime(40.0, 20.0), 50.0);
     EXPECT_NE(errorOf(std::string(valid) + "  time: {type: adaptive, end: 50}\n")
                   .find("'solid.time.first_step' missing"),
@@ -189,13 +190,13 @@ TEST(SolidConfig, LineSearchPolicy)
     EXPECT_EQ(SolidConfig::load(write(valid)).newton.lineSearch, "fallback");
     for (const auto& [given, meant] : std::vector<std::pair<std::string, std::string>>{
              {"always", "always"}, {"never", "never"}, {"true", "always"}, {"false", "never"}})
-        EXPECT_EQ(SolidConfig::load(write(std::string(valid) + "  newton: {line_search: " + given +
-                                          "}\n"))
+        EXPECT_EQ(SolidConfig::load(
+                      write(std::string(valid) + "  newton: {line_search: " + given + "}\n"))
                       .newton.lineSearch,
                   meant);
-    EXPECT_NE(errorOf(std::string(valid) + "  newton: {line_search: sometimes}\n")
-                  .find("line_search"),
-              std::string::npos);
+    EXPECT_NE(
+        errorOf(std::string(valid) + "  newton: {line_search: sometimes}\n").find("line_search"),
+        std::string::npos);
 }
 
 TEST(SolidConfig, GravityNeedsDensityAndYamlSyntaxErrors)

@@ -46,7 +46,8 @@ CantileverRun cantilever(const mesh::Mesh& m, fe::LineSearch policy)
         }
         solver.acceptLevel();
     }
-    run.tipDeflection = -solver.displacement()[3 * m.nearestNode(Eigen::Vector3d(1.0, 0.025, 0.025)) + 1];
+    run.tipDeflection =
+        -solver.displacement()[3 * m.nearestNode(Eigen::Vector3d(1.0, 0.025, 0.025)) + 1];
     return run;
 }
 } // namespace

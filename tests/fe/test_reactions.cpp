@@ -24,7 +24,8 @@ mesh::Mesh beamMesh()
 TEST(Reactions, ClampedGroupBalancesTractionForceAndGravity)
 {
     const mesh::Mesh m = beamMesh();
-    for (auto kinematics : {material::Kinematics::SmallStrain, material::Kinematics::TotalLagrangian})
+    for (auto kinematics :
+         {material::Kinematics::SmallStrain, material::Kinematics::TotalLagrangian})
     {
         const auto law = material::makeMaterial(fsi::testing::elastic(1e7, 0.3), kinematics);
         fe::ProblemDefinition p;

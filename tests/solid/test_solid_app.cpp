@@ -5,13 +5,13 @@
 #include <gtest/gtest.h>
 #include <unsupported/Eigen/MatrixFunctions>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <sstream>
-#include <filesystem>
-#include <algorithm>
-#include <fstream>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -165,12 +165,13 @@ TEST(SolidApp, HelpListsEveryOptionAndExitsZero)
     const fs::path out = dir() / "help.stdout";
     for (const char* flag : {"--help", "-h"})
     {
-        const int raw =
-            std::system((std::string(SOLID_APP) + " " + flag + " > " + out.string() + " 2>&1").c_str());
+        const int raw = std::system(
+            (std::string(SOLID_APP) + " " + flag + " > " + out.string() + " 2>&1").c_str());
         ASSERT_TRUE(WIFEXITED(raw));
         EXPECT_EQ(WEXITSTATUS(raw), 0) << flag;
         std::ifstream in(out);
-        const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        const std::string text((std::istreambuf_iterator<char>(in)),
+                               std::istreambuf_iterator<char>());
         for (const char* option :
              {"--out", "--restart", "--launch", "--port-file", "--comm-timeout", "--help"})
             EXPECT_NE(text.find(option), std::string::npos) << option << " missing in:\n" << text;
@@ -198,7 +199,9 @@ std::string relaxationConfig(const std::string& time)
            "      - {surface: y0, y: 0.0}\n"
            "      - {surface: z0, z: 0.0}\n"
            "      - {surface: x1, x: 1.0e-3}\n"
-           "  time: " + time + "\n"
+           "  time: " +
+           time +
+           "\n"
            "  output:\n"
            "    format: ascii\n"
            "    watch: [{name: corner, point: [1.0, 1.0, 1.0]}]\n";
@@ -249,7 +252,8 @@ double exactRelaxation(double t)
     const Eigen::Vector2d gamma(gammas[0], gammas[1]);
     const double s0 = 3.0 * K * eps0 / (a + gamma.sum());
     const Eigen::Matrix2d M = Eigen::Matrix2d::Identity() + gamma * Eigen::RowVector2d::Ones() / a;
-    const Eigen::Matrix2d A = -M.inverse() * Eigen::Vector2d(1.0 / taus[0], 1.0 / taus[1]).asDiagonal();
+    const Eigen::Matrix2d A =
+        -M.inverse() * Eigen::Vector2d(1.0 / taus[0], 1.0 / taus[1]).asDiagonal();
     const Eigen::Vector2d q = (A * t).exp() * (gamma * s0);
     const double s = (3.0 * K * eps0 - q.sum()) / a;
     return 3.0 * (s + q.sum());
@@ -314,7 +318,8 @@ TEST(SolidApp, AdaptiveScheduleRelaxationMatchesClosedForm)
     EXPECT_LT(t.size(), 100u);
     for (double mark : {0.1, 1.0, 10.0, 100.0})
     {
-        const auto at = std::find_if(t.begin(), t.end(), [&](double v) { return std::abs(v - mark) < 1e-12; });
+        const auto at =
+            std::find_if(t.begin(), t.end(), [&](double v) { return std::abs(v - mark) < 1e-12; });
         ASSERT_NE(at, t.end()) << "no level at t = " << mark;
         const double fe = csv["corner_sigma_xx"][at - t.begin()], exact = exactRelaxation(mark);
         std::printf("  t = %6.1f s: sigma_xx %.6e Pa, closed form %.6e Pa, error %+.2e\n", mark, fe,

@@ -75,8 +75,8 @@ NewtonParameters NewtonParameters::parse(const Block& b)
     p.residualTolerance = b.number("residual_tolerance", p.residualTolerance);
     p.absoluteTolerance = b.number("absolute_tolerance", p.absoluteTolerance);
     // true/false: the former switch (line search on every step / never)
-    p.lineSearch = b.choice("line_search", {"fallback", "always", "never", "true", "false"},
-                            p.lineSearch);
+    p.lineSearch =
+        b.choice("line_search", {"fallback", "always", "never", "true", "false"}, p.lineSearch);
     if (p.lineSearch == "true")
         p.lineSearch = "always";
     else if (p.lineSearch == "false")
@@ -389,8 +389,8 @@ std::string SolidConfig::echo() const
     o << "  newton: {max_iterations: " << newton.maxIterations
       << ", residual_tolerance: " << newton.residualTolerance
       << ", absolute_tolerance: " << newton.absoluteTolerance
-      << ", line_search: " << newton.lineSearch
-      << ", max_load_cuts: " << newton.maxLoadCuts << "}\n";
+      << ", line_search: " << newton.lineSearch << ", max_load_cuts: " << newton.maxLoadCuts
+      << "}\n";
     o << "  loads:\n";
     if (loads.hasGravity)
         o << "    gravity: " << vec(loads.gravity) << "\n";

@@ -348,7 +348,8 @@ bool StructuralSolver::admissible(const std::vector<double>& u) const
             for (int i = 0; i < 3; ++i)
                 ue(i, a) = u[3 * cells.nodes(c)[a] + i];
         for (int q = 0; q < cq.numPoints && ok; ++q)
-            ok = (Eigen::Matrix3d::Identity() + displacementGradient(cq, q, ue)).determinant() > 0.0;
+            ok =
+                (Eigen::Matrix3d::Identity() + displacementGradient(cq, q, ue)).determinant() > 0.0;
     }
     MPI_Allreduce(MPI_IN_PLACE, &ok, 1, MPI_INT, MPI_MIN, comm_);
     return ok != 0;
@@ -571,8 +572,8 @@ SolveReport StructuralSolver::solveLevel(const material::TimeStep& step,
             for (int dof = 0; dof < numDofs(); ++dof)
                 f[dof] = fextCommitted_[dof] + lambda * (fTarget[dof] - fextCommitted_[dof]);
             SolveReport sub;
-            ok = newtonWithPolicy(f, factorCommitted_ + lambda * (loadFactor - factorCommitted_),
-                                  u, sub);
+            ok = newtonWithPolicy(f, factorCommitted_ + lambda * (loadFactor - factorCommitted_), u,
+                                  sub);
             iterations += sub.newtonIterations;
             report.residuals = sub.residuals;
             report.finalResidual = sub.finalResidual;

@@ -260,9 +260,9 @@ private:
     // converged solve at solvedStep_ (stress from the committed history and the step).
     bool atAcceptedState_ = true;
     material::TimeStep solvedStep_{};
-    std::vector<double> fintConverged_;         // f_int of the last converged Newton solve [N]
-    std::vector<double> fintAtU_, fextAtU_;     // f_int, f_ext of the current state [N]
-    std::vector<double> fintCommitted_;         // ... of the last accepted level
+    std::vector<double> fintConverged_;     // f_int of the last converged Newton solve [N]
+    std::vector<double> fintAtU_, fextAtU_; // f_int, f_ext of the current state [N]
+    std::vector<double> fintCommitted_;     // ... of the last accepted level
 };
 
 } // namespace fsi::fe

@@ -183,7 +183,8 @@ void writeVtu(const std::string& path, const mesh::Mesh& mesh, const SolidFields
         offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
     }
     std::ostringstream out;
-    out << "<?xml version=\"1.0\"?>\n" << kFieldNote << "\n"
+    out << "<?xml version=\"1.0\"?>\n"
+        << kFieldNote << "\n"
         << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
            "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n  <UnstructuredGrid>\n"
         << "    <Piece NumberOfPoints=\"" << mesh.numNodes() << "\" NumberOfCells=\""
