@@ -8,7 +8,9 @@ RESULTS holds
   visco/interface/level_*.csv   wetted-node positions and displacements per level
   baseline/history.csv     elastic baseline with the instantaneous modulus (optional)
   baseline/interface/level_0000.csv
-Writes RESULTS/tip_sections.png, forces.png, tip_aoa.png and summary.csv.
+Writes RESULTS/tip_sections.png (Fig. 5: closed outlines of the tip section at --shape-times,
+the elastic baseline and the undeformed section, equal axis scales), forces.png, tip_aoa.png
+and summary.csv.
 Conventions (cases/hydrofoil/README.md): x flow, y across the tunnel, lift = -F_y, z span.
 """
 import argparse
@@ -21,6 +23,8 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.tri as mtri  # noqa: E402
+import numpy as np  # noqa: E402
 
 
 def read_csv(path):
@@ -46,13 +50,85 @@ def interface_levels(folder):
     return out
 
 
-def tip_section(rows, span_axis, fraction=0.03):
-    """Nodes within `fraction` of the span of the tip (largest span coordinate)."""
+def tip_face(rows, span_axis, tolerance=1e-6):
+    """Wetted nodes in the tip plane (span coordinate within tolerance x span of the largest)."""
     keys = "xyz"
     s = [float(r[keys[span_axis]]) for r in rows]
     smin, smax = min(s), max(s)
-    tol = fraction * (smax - smin)
-    return [r for r, v in zip(rows, s) if v >= smax - tol]
+    return [r for r, v in zip(rows, s) if v >= smax - tolerance * (smax - smin)]
+
+
+def _circumradius(p):
+    """Circumradius of the triangles p (m, 3, 2); inf for degenerate (collinear) ones."""
+    a = np.linalg.norm(p[:, 1] - p[:, 2], axis=1)
+    b = np.linalg.norm(p[:, 2] - p[:, 0], axis=1)
+    c = np.linalg.norm(p[:, 0] - p[:, 1], axis=1)
+    d1, d2 = p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]
+    area2 = np.abs(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r = a * b * c / (2.0 * area2)
+    return np.where(area2 > 1e-14 * (a * b + b * c + c * a), r, np.inf)
+
+
+def section_outline(points, alpha=3.0):
+    """Outline of a planar section given as all of its nodes, boundary and interior.
+
+    points: (n, 2) reference positions (chord, lift) of the nodes of the section face.
+    The Delaunay triangulation of the nodes covers their convex hull; triangles are peeled off
+    from the hull inwards while their circumradius exceeds alpha x the median edge length (the
+    triangles that bridge a concave stretch of the outline have the outline's radius of curvature;
+    triangles of the face's own mesh have about the mesh size). The edges used by one remaining
+    triangle form the outline.
+    Returns (upper, lower): node indices of the two surfaces, each from the leading edge (smallest
+    chord coordinate) to the trailing edge (largest), upper = larger lift coordinate; together they
+    are the closed outline, ordered around the section."""
+    pts = np.asarray(points, dtype=float)
+    tri = mtri.Triangulation(pts[:, 0], pts[:, 1])
+    triangles = tri.triangles
+    edges = tri.edges
+    limit = alpha * np.median(np.linalg.norm(pts[edges[:, 0]] - pts[edges[:, 1]], axis=1))
+    radius = _circumradius(pts[triangles])
+    # triangle adjacency through edges; -1 across the hull
+    neighbours = tri.neighbors
+    alive = np.ones(len(triangles), bool)
+    exposed = [t for t in range(len(triangles)) if (neighbours[t] < 0).any()]
+    while exposed:
+        t = exposed.pop()
+        if not alive[t] or radius[t] <= limit:
+            continue
+        alive[t] = False
+        exposed.extend(n for n in neighbours[t] if n >= 0 and alive[n])
+    count = {}
+    for t in np.nonzero(alive)[0]:
+        for k in range(3):
+            e = tuple(sorted((triangles[t][k], triangles[t][(k + 1) % 3])))
+            count[e] = count.get(e, 0) + 1
+    adjacent = {}
+    for (i, j), n in count.items():
+        if n == 1:
+            adjacent.setdefault(i, []).append(j)
+            adjacent.setdefault(j, []).append(i)
+    if not adjacent:
+        raise ValueError("section_outline: no outline found (fewer than 3 nodes?)")
+    start = min(adjacent, key=lambda i: (pts[i, 0], pts[i, 1]))
+    loop, previous = [start], None
+    while True:
+        nxt = [j for j in adjacent[loop[-1]] if j != previous]
+        if not nxt:
+            raise ValueError("section_outline: the outline is not closed")
+        previous = loop[-1]
+        if nxt[0] == start:
+            break
+        if nxt[0] in loop:
+            raise ValueError("section_outline: the outline crosses itself (lower alpha)")
+        loop.append(nxt[0])
+    x, y = pts[loop, 0], pts[loop, 1]
+    if np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y) < 0.0:  # make it counter-clockwise
+        loop = [loop[0]] + loop[1:][::-1]
+    te = max(range(len(loop)), key=lambda k: pts[loop[k], 0])
+    lower = loop[: te + 1]  # counter-clockwise from the leading edge: lower surface first
+    upper = [loop[0]] + loop[te:][::-1]
+    return upper, lower
 
 
 def zero_crossing(times, values):
@@ -85,6 +161,56 @@ def save(fig, ax, xlabel, ylabel, path, legend_size=8):
     fig.savefig(path, dpi=130)
 
 
+def outline_curve(rows, order, c, l, deformed=True):
+    """Chord and lift coordinates of the nodes `order` of rows, closed (first node repeated)."""
+    idx = list(order) + [order[0]]
+    xs = [float(rows[i][c]) + (float(rows[i]["u" + c]) if deformed else 0.0) for i in idx]
+    ys = [float(rows[i][l]) + (float(rows[i]["u" + l]) if deformed else 0.0) for i in idx]
+    return xs, ys
+
+
+def tip_outline(rows, span_axis, c, l):
+    """The tip-face rows and their outline order (upper LE->TE, then lower TE->LE)."""
+    tip = tip_face(rows, span_axis)
+    upper, lower = section_outline([(float(r[c]), float(r[l])) for r in tip])
+    return tip, upper + lower[::-1][1:-1]
+
+
+def draw_tip_sections(ax, res, a, c, l):
+    """The paper's Fig. 5: tip-section outlines at the chosen times, the elastic baseline and the
+    undeformed section, on equal axis scales. The outline is found once in the reference
+    configuration (section_outline) and drawn at each time with the nodes' displacements."""
+    levels = interface_levels(os.path.join(res, "visco"))
+    if levels:
+        _, rows0 = levels[min(levels)]
+        tip0, order = tip_outline(rows0, a.span_axis, c, l)
+        xs, ys = outline_curve(tip0, order, c, l, deformed=False)
+        ax.plot(xs, ys, "-", color="0.6", lw=0.8, label="undeformed")
+        wanted = [float(x) for x in a.shape_times.split(",")]
+        chosen = []
+        for w in wanted:
+            lv = min(levels, key=lambda k: abs(levels[k][0] - w))
+            if lv not in chosen:
+                chosen.append(lv)
+        for lv in chosen:
+            time, rows = levels[lv]
+            tip, order = tip_outline(rows, a.span_axis, c, l)
+            xs, ys = outline_curve(tip, order, c, l)
+            ax.plot(xs, ys, "-", lw=1.2, label=f"t = {time:g} s")
+        blevels = interface_levels(os.path.join(res, "baseline"))
+        if blevels:
+            _, rows = blevels[max(blevels)]
+            tip, order = tip_outline(rows, a.span_axis, c, l)
+            xs, ys = outline_curve(tip, order, c, l)
+            ax.plot(xs, ys, "k--", lw=1.0, label="baseline (elastic)")
+    ax.set_xlabel(f"{c} [m]")
+    ax.set_ylabel(f"{l} [m]")
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_title("Tip section (paper Fig. 5)")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("results")
@@ -112,36 +238,9 @@ def main():
     keys = "xyz"
     c, l = keys[a.chord_axis], keys[a.lift_axis]
 
-    # Figure 5: tip-section shapes.
+    # Figure 5: tip-section outlines (closed curves, equal axis scales).
     fig, ax = plt.subplots(figsize=(7.5, 3.6))
-    levels = interface_levels(os.path.join(res, "visco"))
-    if levels:
-        wanted = [float(x) for x in a.shape_times.split(",")]
-        chosen = []
-        for w in wanted:
-            lv = min(levels, key=lambda k: abs(levels[k][0] - w))
-            if lv not in chosen:
-                chosen.append(lv)
-        for lv in chosen:
-            time, rows = levels[lv]
-            tip = tip_section(rows, a.span_axis)
-            ax.plot([float(r[c]) + float(r["u" + c]) for r in tip],
-                    [float(r[l]) + float(r["u" + l]) for r in tip], ".", ms=3, label=f"t = {time:g} s")
-        blevels = interface_levels(os.path.join(res, "baseline"))
-        if blevels:
-            _, rows = blevels[max(blevels)]
-            tip = tip_section(rows, a.span_axis)
-            ax.plot([float(r[c]) + float(r["u" + c]) for r in tip],
-                    [float(r[l]) + float(r["u" + l]) for r in tip], "k.", ms=1.5, label="baseline")
-        _, rows = levels[min(levels)]
-        tip = tip_section(rows, a.span_axis)
-        ax.plot([float(r[c]) for r in tip], [float(r[l]) for r in tip], ",", color="0.6",
-                label="undeformed")
-    ax.set_xlabel(f"{c} [m]")
-    ax.set_ylabel(f"{l} [m]")
-    ax.set_aspect("equal", adjustable="datalim")
-    ax.set_title("Tip section (paper Fig. 5)")
-    ax.legend(fontsize=7, markerscale=3)
+    draw_tip_sections(ax, res, a, c, l)
     fig.tight_layout()
     fig.savefig(os.path.join(res, "tip_sections.png"), dpi=130)
 

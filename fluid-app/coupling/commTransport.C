@@ -19,6 +19,7 @@
 #include "fsi/comm/LaunchOptions.hpp"
 #include "fsi/comm/MpmdWorld.hpp"
 
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <optional>
@@ -158,6 +159,18 @@ bool hasFlag(int argc, char** argv, const char* flag)
     return false;
 }
 
+// The options fsi::comm takes out of the command line before OpenFOAM reads it (so they are
+// not in OpenFOAM's -help table): printed ahead of OpenFOAM's usage.
+const char* const commHelp =
+    "\nfluid-app coupling options (fsi::comm; GNU style, before or after OpenFOAM's):\n"
+    "  --launch port|mpmd      how to meet solid-app: one mpirun A : B (mpmd, default) or the\n"
+    "                          MPI port solid-app publishes in a file (port)\n"
+    "  --port-file PATH        port mode: the file with solid-app's port name\n"
+    "                          (default fsi-comm.port)\n"
+    "  --comm-timeout SECONDS  bound of every wait on solid-app (default 600)\n"
+    "Run modes (system/fsiDict mode, or the options -coupled / -rigid / -prescribed below);\n"
+    "-restart continues a coupled run together with solid-app --restart.\n\n";
+
 // The `mode` entry of <case>/system/fsiDict, read before OpenFOAM starts (a plain text
 // scan: the last line `mode <word>;` outside comments wins, as in OpenFOAM dictionaries);
 // "" when absent or unreadable.
@@ -206,10 +219,12 @@ void initialiseComm(int& argc, char**& argv)
         const bool uncoupled = hasFlag(argc, argv, "-rigid") || hasFlag(argc, argv, "-prescribed") ||
                                ((mode == "rigid" || mode == "prescribed") &&
                                 !hasFlag(argc, argv, "-coupled"));
-        if (uncoupled || hasFlag(argc, argv, "-help") || hasFlag(argc, argv, "-help-full") ||
-            hasFlag(argc, argv, "-doc") || hasFlag(argc, argv, "-srcDoc"))
+        const bool help = hasFlag(argc, argv, "-help") || hasFlag(argc, argv, "-help-full");
+        if (uncoupled || help || hasFlag(argc, argv, "-doc") || hasFlag(argc, argv, "-srcDoc"))
         {
             launchOptions = comm::parseLaunchOptions(argc, argv); // strip the flags only
+            if (help) // OpenFOAM's usage (its own options) follows and exits 0
+                std::printf("%s", commHelp);
             return;
         }
         launchOptions = comm::initialiseMpmdWorld(argc, argv);

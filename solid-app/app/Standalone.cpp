@@ -12,6 +12,7 @@
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -23,10 +24,34 @@ namespace fsi::app
 {
 namespace fs = std::filesystem;
 
+std::string usageText()
+{
+    return "usage: solid-app CONFIG.yaml [--out DIR] [--restart] [--launch mpmd|port]\n"
+           "                 [--port-file PATH] [--comm-timeout SECONDS]\n"
+           "       solid-app --help\n"
+           "Runs the structural problem of CONFIG.yaml (the keys: config/solid.example.yaml);\n"
+           "a config with a top-level 'coupling:' block runs coupled with fluid-app\n"
+           "(config/coupled.example.yaml). Parallel: mpirun -np N solid-app CONFIG.yaml.\n"
+           "Options:\n"
+           "  --out DIR               output folder (default: solid.output.folder of the config)\n"
+           "  --restart               coupled runs: continue from DIR/checkpoint/latest\n"
+           "  --launch mpmd|port      coupled runs: how to meet fluid-app (overrides\n"
+           "                          coupling.launch.mode): one mpirun A : B (mpmd) or an MPI\n"
+           "                          port published in a file (port)\n"
+           "  --port-file PATH        port mode: the file solid-app writes its port name to\n"
+           "                          (overrides coupling.launch.port_file)\n"
+           "  --comm-timeout SECONDS  bound of every wait on fluid-app (overrides\n"
+           "                          coupling.launch.timeout; default 600)\n"
+           "  -h, --help              this text\n"
+           "Exit status: 0 done, 1 bad input or a failed run (one line 'error: ...' on stderr),\n"
+           "2 a standalone level did not converge.\n";
+}
+
 RunOptions parseArguments(int argc, char** argv)
 {
     RunOptions o;
-    const std::string usage = "usage: solid-app CONFIG.yaml [--out DIR] [--restart]";
+    const std::string usage = "usage: solid-app CONFIG.yaml [--out DIR] [--restart] (solid-app "
+                              "--help lists every option)";
     for (int i = 1; i < argc; ++i)
     {
         const std::string a = argv[i];
@@ -39,7 +64,7 @@ RunOptions parseArguments(int argc, char** argv)
         else if (a == "--restart")
             o.restart = true;
         else if (a == "-h" || a == "--help")
-            throw std::runtime_error(usage);
+            o.help = true;
         else if (!a.empty() && a[0] == '-')
             throw std::runtime_error("unknown option '" + a + "'; " + usage);
         else if (o.configFile.empty())
@@ -47,7 +72,7 @@ RunOptions parseArguments(int argc, char** argv)
         else
             throw std::runtime_error("more than one config file given; " + usage);
     }
-    if (o.configFile.empty())
+    if (o.configFile.empty() && !o.help)
         throw std::runtime_error("no config file given; " + usage);
     return o;
 }
@@ -80,7 +105,9 @@ fe::ProblemDefinition problemFromConfig(const config::SolidConfig& c)
     p.newton.maxIterations = c.newton.maxIterations;
     p.newton.residualTolerance = c.newton.residualTolerance;
     p.newton.absoluteTolerance = c.newton.absoluteTolerance;
-    p.newton.lineSearch = c.newton.lineSearch;
+    p.newton.lineSearch = c.newton.lineSearch == "always"  ? fe::LineSearch::Always
+                          : c.newton.lineSearch == "never" ? fe::LineSearch::Never
+                                                           : fe::LineSearch::Fallback;
     p.newton.maxLoadCuts = c.newton.maxLoadCuts;
     p.linearSolverVerbosity = c.solverVerbosity;
     return p;
@@ -132,31 +159,55 @@ int runStandalone(const RunOptions& options)
         std::printf(" ), %d free dofs, %d rank(s), material %s\n", solver.numFreeDofs(), ranks,
                     law->name().c_str());
     }
-    std::vector<std::string> names;
+    std::vector<std::string> names, extraColumns;
     std::vector<std::array<double, 3>> points;
     for (const auto& w : cfg.output.watch)
     {
         names.push_back(w.name);
         points.push_back(w.point);
     }
-    io::CsvHistory history((fs::path(out) / "history.csv").string(), mesh, names, points);
+    // history.csv: watch-point displacement, then Cauchy stress and strain at each watch point,
+    // then the reaction force on each support (clamped groups, prescribed-displacement surfaces).
+    const char* components[6] = {"xx", "yy", "zz", "xy", "yz", "xz"};
+    for (const auto& name : names)
+        for (const char* quantity : {"_sigma_", "_eps_"})
+            for (const char* c : components)
+                extraColumns.push_back(name + quantity + c);
+    // reactions: every clamped group and every surface with prescribed displacements
+    std::vector<std::string> supports = cfg.mesh.clamped;
+    for (const auto& d : cfg.loads.displacements)
+        if (std::find(supports.begin(), supports.end(), d.surface) == supports.end())
+            supports.push_back(d.surface);
+    for (const auto& group : supports)
+        for (const char* c : {"x", "y", "z"})
+            extraColumns.push_back("reaction_" + group + "_" + c);
+    io::CsvHistory history((fs::path(out) / "history.csv").string(), mesh, names, points,
+                           extraColumns);
+    std::vector<int> watchNodes;
+    for (std::size_t k = 0; k < names.size(); ++k)
+        watchNodes.push_back(history.node(k));
     io::PvdSeries series((fs::path(out) / "solid.pvd").string());
     std::string levels =
-        "level,time,load_factor,newton_iterations,load_cuts,residual,factorizations,wall_s\n";
+        "level,time,dt,load_factor,newton_iterations,load_cuts,residual,factorizations,wall_s\n";
 
-    const std::vector<double> times = cfg.time.levels();
-    double previous = 0.0;
-    for (std::size_t n = 0; n < times.size(); ++n)
+    // Level times: planned (uniform, list, geometric) or following the solution (adaptive).
+    const auto& schedule = cfg.time;
+    const bool adaptive = schedule.present && schedule.type == "adaptive";
+    const std::vector<double> planned = adaptive ? std::vector<double>{0.0} : schedule.levels();
+    double time = 0.0, previous = 0.0, step = schedule.firstStep;
+    std::vector<double> previousU(solver.numDofs(), 0.0);
+    std::size_t levelCount = 0;
+    for (std::size_t n = 0;; ++n)
     {
-        double dt = n == 0 ? 0.0 : times[n] - previous;
-        if (std::abs(dt - cfg.time.dt) <= 1e-9 * cfg.time.dt)
-            dt = cfg.time.dt; // bitwise-constant dt: the factorization can be reused
-        const material::TimeStep step{times[n], dt};
-        const double factor = cfg.time.factorAt(times[n]);
+        double dt = n == 0 ? 0.0 : time - previous;
+        if (schedule.type == "uniform" && std::abs(dt - schedule.dt) <= 1e-9 * schedule.dt)
+            dt = schedule.dt; // bitwise-constant dt: the factorization can be reused
+        const material::TimeStep levelStep{time, dt};
+        const double factor = schedule.factorAt(time);
         if (rank == 0)
-            std::printf("level %zu  t = %g s  dt = %g s  load factor %g\n", n, step.time, step.dt,
-                        factor);
-        const auto report = solver.solve(step, {}, factor);
+            std::printf("level %zu  t = %g s  dt = %g s  load factor %g\n", n, levelStep.time,
+                        levelStep.dt, factor);
+        const auto report = solver.solve(levelStep, {}, factor);
         if (rank == 0)
             std::printf(
                 "  %s in %d Newton iterations (|R| %.3e -> %.3e N), %d factorizations so far; "
@@ -168,37 +219,78 @@ int runStandalone(const RunOptions& options)
         {
             if (rank == 0)
                 std::fprintf(stderr, "error: %s: level %zu (t = %g s) did not converge: %s\n",
-                             options.configFile.c_str(), n, step.time, report.message.c_str());
+                             options.configFile.c_str(), n, levelStep.time, report.message.c_str());
             return 2;
         }
         solver.acceptLevel();
-        previous = times[n];
+        const bool last = adaptive ? time >= schedule.end : n + 1 >= planned.size();
+        // the results of the accepted level (stress with the level's own history increment)
+        std::vector<double> extra;
+        for (const auto& at : solver.stressAndStrainAt(watchNodes))
+        {
+            extra.insert(extra.end(), at.stress.data(), at.stress.data() + 6);
+            extra.insert(extra.end(), at.strain.data(), at.strain.data() + 6);
+        }
+        for (const auto& group : supports)
+        {
+            const Eigen::Vector3d r = solver.reactionForce(group);
+            extra.insert(extra.end(), r.data(), r.data() + 3);
+        }
         std::vector<material::Vector6> nodal, cellStress;
-        const bool writeVtu =
-            cfg.output.vtu && (n % cfg.output.every == 0 || n + 1 == times.size());
+        const bool writeVtu = cfg.output.vtu && (n % cfg.output.every == 0 || last);
         if (writeVtu)
             solver.cauchyStress(nodal, cellStress);
         if (rank == 0)
         {
-            history.record(step.time, solver.displacement());
+            history.record(levelStep.time, solver.displacement(), extra);
             if (writeVtu)
             {
                 char name[64];
                 std::snprintf(name, sizeof name, "solid_%05zu.vtu", n);
                 io::writeVtu((fs::path(out) / name).string(), mesh,
                              {&solver.displacement(), &nodal, &cellStress}, cfg.output.binary);
-                series.add(step.time, name);
+                series.add(levelStep.time, name);
                 series.write();
             }
             const double wall =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - wallStart).count();
             char row[256];
-            std::snprintf(row, sizeof row, "%zu,%.10g,%.10g,%d,%d,%.6e,%d,%.3f\n", n, step.time,
-                          factor, report.newtonIterations, report.loadCuts, report.finalResidual,
-                          solver.factorizationCount(), wall);
+            std::snprintf(row, sizeof row, "%zu,%.10g,%.10g,%.10g,%d,%d,%.6e,%d,%.3f\n", n,
+                          levelStep.time, levelStep.dt, factor, report.newtonIterations,
+                          report.loadCuts, report.finalResidual, solver.factorizationCount(), wall);
             levels += row;
             io::writeFileAtomically((fs::path(out) / "levels.csv").string(), levels);
         }
+        if (last)
+        {
+            levelCount = n + 1;
+            break;
+        }
+        previous = time;
+        if (!adaptive)
+        {
+            time = planned[n + 1];
+            continue;
+        }
+        // adaptive: relative change of the displacement field over the level just accepted
+        const auto& u = solver.displacement();
+        double du = 0.0, umax = 0.0;
+        for (int node = 0; node < mesh.numNodes(); ++node)
+        {
+            double d2 = 0.0, u2 = 0.0;
+            for (int i = 0; i < 3; ++i)
+            {
+                d2 += (u[3 * node + i] - previousU[3 * node + i]) *
+                      (u[3 * node + i] - previousU[3 * node + i]);
+                u2 += u[3 * node + i] * u[3 * node + i];
+            }
+            du = std::max(du, d2);
+            umax = std::max(umax, u2);
+        }
+        previousU = u;
+        if (n > 0)
+            step = schedule.nextStep(dt, umax > 0.0 ? std::sqrt(du / umax) : 0.0);
+        time = schedule.nextTime(time, step);
     }
     if (rank == 0)
     {
@@ -214,7 +306,7 @@ int runStandalone(const RunOptions& options)
         }
         std::printf("solid-app: done, %zu level(s), %d analyses, %d factorizations, wall %.3f s, "
                     "output in %s\n",
-                    times.size(), solver.analysisCount(), solver.factorizationCount(), wall,
+                    levelCount, solver.analysisCount(), solver.factorizationCount(), wall,
                     out.c_str());
     }
     return 0;

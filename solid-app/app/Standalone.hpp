@@ -20,10 +20,15 @@ struct RunOptions
     std::string configFile;
     std::string outputFolder; // "" = solid.output.folder of the config
     bool restart = false;     // coupled mode: continue from OUT/checkpoint/latest
+    bool help = false;        // -h / --help: print usageText() and exit 0
 };
 
-// Parses "CONFIG.yaml [--out DIR] [--restart]"; throws std::runtime_error with a usage line.
+// Parses "CONFIG.yaml [--out DIR] [--restart] | --help"; throws std::runtime_error with a usage
+// line. (--launch, --port-file and --comm-timeout are taken out of argv before, by the driver.)
 RunOptions parseArguments(int argc, char** argv);
+
+// The --help text: every option of solid-app, standalone and coupled.
+std::string usageText();
 
 // True if the config has a top-level `coupling:` block (the driver's coupled mode).
 bool isCoupledConfig(const std::string& configFile);

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // solid-app CONFIG.yaml [--out DIR] [--restart] [--launch mpmd|port] [--port-file F] [--comm-timeout S]
+// solid-app --help
 #include "Standalone.hpp"
 
 #include <mpi.h>
@@ -22,7 +23,12 @@ int main(int argc, char** argv)
         fsi::driver::takeLaunchFlags(argc, argv); // --launch, --port-file, --comm-timeout
 #endif
         const auto options = fsi::app::parseArguments(argc, argv);
-        if (fsi::app::isCoupledConfig(options.configFile))
+        if (options.help)
+        {
+            if (rank == 0)
+                std::printf("%s", fsi::app::usageText().c_str());
+        }
+        else if (fsi::app::isCoupledConfig(options.configFile))
         {
 #ifdef FSI_HAVE_DRIVER
             code = fsi::driver::runCoupled(options.configFile, options.outputFolder, options.restart);

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <unistd.h>
@@ -132,6 +133,70 @@ TEST(SolidConfig, TimeBlock)
     EXPECT_NE(errorOf(std::string(valid) + "  time: {dt: 0, end: 2}\n")
                   .find("'solid.time.dt' must be > 0"),
               std::string::npos);
+}
+
+TEST(SolidConfig, ListGeometricAndAdaptiveSchedules)
+{
+    const auto list = SolidConfig::load(
+        write(std::string(valid) + "  time: {type: list, times: [0, 0.1, 1, 10]}\n"));
+    EXPECT_EQ(list.time.levels(), (std::vector<double>{0, 0.1, 1, 10}));
+    // geometric: 0, 0.1, 0.25, 0.475 ... lands on the hit 1 and the end 100
+    const auto geo = SolidConfig::load(write(
+        std::string(valid) + "  time: {type: geometric, first_step: 0.1, growth: 1.5, end: 100, "
+                             "hit: [1, 10]}\n"));
+    const auto t = geo.time.levels();
+    ASSERT_GE(t.size(), 4u);
+    EXPECT_DOUBLE_EQ(t[1], 0.1);
+    EXPECT_DOUBLE_EQ(t[2], 0.25);
+    EXPECT_EQ(t.back(), 100.0);
+    for (double mark : {1.0, 10.0})
+        EXPECT_NE(std::find(t.begin(), t.end(), mark), t.end()) << mark;
+    EXPECT_LT(t.size(), 30u);
+    for (std::size_t i = 1; i < t.size(); ++i)
+        EXPECT_GT(t[i], t[i - 1]);
+    // adaptive: step control and landing on the hit and end times
+    const auto ad = SolidConfig::load(
+        write(std::string(valid) +
+              "  time: {type: adaptive, end: 50, first_step: 0.5, target_change: 0.1, "
+              "max_step: 20, hit: [7]}\n"));
+    EXPECT_TRUE(ad.time.levels().empty());
+    EXPECT_DOUBLE_EQ(ad.time.nextStep(1.0, 0.0), 2.0);   // no change: growth_limit
+    EXPECT_DOUBLE_EQ(ad.time.nextStep(1.0, 0.05), 2.0);  // half the target: doubled (limit 2)
+    EXPECT_DOUBLE_EQ(ad.time.nextStep(1.0, 0.125), 0.8); // 0.1 / 0.125
+    EXPECT_DOUBLE_EQ(ad.time.nextStep(1.0, 10.0), 0.5);  // shrink_limit
+    EXPECT_DOUBLE_EQ(ad.time.nextStep(15.0, 0.0), 20.0); // max_step
+    EXPECT_DOUBLE_EQ(ad.time.nextTime(5.0, 3.0), 7.0);   // lands on the hit
+    EXPECT_DOUBLE_EQ(ad.time.nextTime(6.5, 0.4), 6.9);
+    EXPECT_DOUBLE_EQ(ad.time.nextTime(6.5, 0.45), 7.0); // a sliver of 0.05 < 0.2 step: stretched
+    EXPECT_DOUBLE_EQ(ad.time.nextTime(40.0, 20.0), 50.0);
+    EXPECT_NE(errorOf(std::string(valid) + "  time: {type: adaptive, end: 50}\n")
+                  .find("'solid.time.first_step' missing"),
+              std::string::npos); // elastic: no Prony times to derive it from
+    EXPECT_NE(errorOf(std::string(valid) + "  time: {type: list, times: [1, 2]}\n")
+                  .find("'solid.time.times' must start at 0"),
+              std::string::npos);
+    EXPECT_NE(errorOf(std::string(valid) + "  time: {type: geometric, first_step: 0.1, end: 9, "
+                                           "dt: 1}\n")
+                  .find("unknown key 'dt'"),
+              std::string::npos);
+    EXPECT_NE(errorOf(std::string(valid) + "  time: {type: geometric, first_step: 0.1, end: 9, "
+                                           "hit: [10]}\n")
+                  .find("'solid.time.hit'"),
+              std::string::npos);
+}
+
+TEST(SolidConfig, LineSearchPolicy)
+{
+    EXPECT_EQ(SolidConfig::load(write(valid)).newton.lineSearch, "fallback");
+    for (const auto& [given, meant] : std::vector<std::pair<std::string, std::string>>{
+             {"always", "always"}, {"never", "never"}, {"true", "always"}, {"false", "never"}})
+        EXPECT_EQ(SolidConfig::load(
+                      write(std::string(valid) + "  newton: {line_search: " + given + "}\n"))
+                      .newton.lineSearch,
+                  meant);
+    EXPECT_NE(
+        errorOf(std::string(valid) + "  newton: {line_search: sometimes}\n").find("line_search"),
+        std::string::npos);
 }
 
 TEST(SolidConfig, GravityNeedsDensityAndYamlSyntaxErrors)

@@ -172,3 +172,21 @@ TEST(TimeSchedule, ErrorToleranceIsValidated)
         EXPECT_NE(std::string(e.what()).find("coupling.time.error_tolerance"), std::string::npos);
     }
 }
+
+// A hit time closer than two steps ahead is reached in two equal steps, not in a full step and
+// a sliver (48.9 s + 1.1 s before 50 s).
+TEST(TimeSchedule, HitTimeWithoutSliver)
+{
+    TimeScheduleParameters p;
+    p.type = "adaptive";
+    p.end = 100;
+    p.firstStep = 20;
+    p.growthLimit = 1.45;
+    p.targetChange = 1.0;
+    p.hit = {50};
+    TimeSchedule s(p, {});
+    EXPECT_DOUBLE_EQ(s.advance(0.0), 20.0);
+    // candidate step 20 * 1.45 = 29 < 30 to go, but 30 < 2 x 29: two steps of 15
+    EXPECT_DOUBLE_EQ(s.advance(0.0), 35.0);
+    EXPECT_DOUBLE_EQ(s.advance(0.0), 50.0);
+}

@@ -80,6 +80,9 @@ TEST(VtuWriter, QuadraticCellsRoundTripThroughMeshio)
                                           (binary ? "_b.vtu" : "_a.vtu"));
             io::writeVtu(vtu.string(), m, {&u, &nodal, &cells}, binary);
             ASSERT_TRUE(fs::exists(vtu));
+            // the file names its stress measure
+            EXPECT_NE(slurp(vtu).find("cauchy_stress = Cauchy (true) stress sigma [Pa]"),
+                      std::string::npos);
             const std::string expectedType = cell == fsi::testing::TestCell::Tet10 ? "tetra10"
                                              : cell == fsi::testing::TestCell::Hex20
                                                  ? "hexahedron20"
@@ -123,15 +126,16 @@ TEST(VtuWriter, PvdAndCsv)
     pvd.write();
     const std::string text = slurp(tempDir() / "s.pvd");
     EXPECT_NE(text.find("timestep=\"1.5\" part=\"0\" file=\"s_1.vtu\""), std::string::npos);
-    io::CsvHistory csv((tempDir() / "h.csv").string(), m, {"tip"}, {{1.0, 1.0, 1.0}});
+    io::CsvHistory csv((tempDir() / "h.csv").string(), m, {"tip"}, {{1.0, 1.0, 1.0}}, {"R_x"});
     EXPECT_NEAR(csv.distance(0), 0.0, 1e-12);
     std::vector<double> u(3 * m.numNodes(), 0.25);
-    csv.record(0.0, u);
-    csv.record(2.0, u);
-    EXPECT_EQ(
-        slurp(tempDir() / "h.csv"),
-        "time,tip_ux,tip_uy,tip_uz\n0,2.500000000000e-01,2.500000000000e-01,2.500000000000e-01\n"
-        "2,2.500000000000e-01,2.500000000000e-01,2.500000000000e-01\n");
+    csv.record(0.0, u, {-1.5});
+    csv.record(2.0, u, {2.0});
+    EXPECT_THROW(csv.record(3.0, u), std::invalid_argument);
+    EXPECT_EQ(slurp(tempDir() / "h.csv"),
+              "time,tip_ux,tip_uy,tip_uz,R_x\n0,2.500000000000e-01,2.500000000000e-01,"
+              "2.500000000000e-01,-1.500000000000e+00\n"
+              "2,2.500000000000e-01,2.500000000000e-01,2.500000000000e-01,2.000000000000e+00\n");
     EXPECT_NEAR(io::vonMisesStress((io::Vector6() << 1, 0, 0, 0, 0, 0).finished()), 1.0, 1e-15);
     EXPECT_NEAR(io::vonMisesStress((io::Vector6() << 0, 0, 0, 1, 0, 0).finished()), std::sqrt(3.0),
                 1e-15);

@@ -302,3 +302,29 @@ TEST(Limits, TotalLagrangianViscoelasticRelaxesLikeSmallStrain)
         EXPECT_LT((a - b).norm(), 1e-12 * a.norm());
     }
 }
+
+// The stress of an accepted level from its own (updated) history equals the stress of its
+// solve (committed history of the level before + the step), for finite and zero steps.
+TEST(Prony, AcceptedStressEqualsTheLevelsStress)
+{
+    const Viscoelastic law(5e6, 1e6, {0.5, 0.3}, {0.1, 10.0});
+    std::vector<double> before(law.historySize(), 0.0), after(law.historySize());
+    Vector6 strain;
+    strain << 1e-3, -2e-4, 3e-4, 5e-4, -1e-4, 2e-4;
+    const TimeStep steps[] = {{0.0, 0.0}, {0.1, 0.1}, {2.1, 2.0}};
+    for (const auto& step : steps)
+    {
+        Vector6 stress;
+        Matrix6 D;
+        law.evaluate(strain, step, before.data(), stress, D);
+        law.updateHistory(strain, step, before.data(), after.data());
+        const Vector6 accepted = law.acceptedStress(strain, after.data());
+        EXPECT_LT((accepted - stress).norm(), 1e-12 * stress.norm()) << "t = " << step.time;
+        // the old output path (the level's step applied again to the updated history) is off
+        law.evaluate(strain, step, after.data(), stress, D);
+        if (step.dt > 0.0)
+            EXPECT_GT((accepted - stress).norm(), 1e-3 * stress.norm());
+        before = after;
+        strain *= 1.5;
+    }
+}

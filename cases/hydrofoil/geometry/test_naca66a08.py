@@ -2,6 +2,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Checks of the hydrofoil geometry generator (run: /usr/bin/python3 test_naca66a08.py)."""
 import os
+import re
 import sys
 import tempfile
 import unittest
@@ -23,6 +24,30 @@ def referenceArea(tc, cli, chord, meanline="a08"):
     dyc[0] = 0.0  # integrand is 0 at the nose (y_t = 0, slope log-singular but integrable)
     f = tc * geo.thicknessRatio(x) * np.sqrt(1.0 + dyc * dyc) * 2.0 * s
     return np.trapz(f, s) * chord * chord
+
+
+NUMBER = re.compile(r"[-+]?(?:\d+\.\d*|\.\d+|\d+)(?:[eE][-+]?\d+)?")
+
+
+def geoDifferences(expected, actual, rtol=1e-9, atol=1e-12):
+    """Differences between two .geo texts: the text between numbers must be equal, the numbers
+    equal within |a - b| <= atol + rtol |a| (atol in m: coordinates are in metres). The generator
+    prints 13 significant digits, whose last ones differ between machines (libm, numpy builds), so
+    the text itself is not compared. Returns a list of human-readable differences (empty: same)."""
+    diffs = []
+    a, b = NUMBER.split(expected), NUMBER.split(actual)
+    if a != b:
+        for i, (x, y) in enumerate(zip(a, b)):
+            if x != y:
+                diffs.append("text differs: %r vs %r" % (x.strip()[:60], y.strip()[:60]))
+                break
+        else:
+            diffs.append("the texts have %d and %d parts" % (len(a), len(b)))
+        return diffs
+    for x, y in zip(NUMBER.findall(expected), NUMBER.findall(actual)):
+        if abs(float(x) - float(y)) > atol + rtol * abs(float(x)):
+            diffs.append("number %s vs %s" % (x, y))
+    return diffs
 
 
 def readAsciiStl(path):
@@ -139,7 +164,19 @@ class SectionAndStl(unittest.TestCase):
             with open(os.path.join(tmp, "foil.geo")) as f:
                 fresh = f.read()
         with open(os.path.join(here, "foil.geo")) as f:
-            self.assertEqual(f.read(), fresh, "regenerate geometry/foil.geo with naca66a08.py")
+            diffs = geoDifferences(f.read(), fresh)
+        self.assertEqual(diffs[:5], [], "regenerate geometry/foil.geo with naca66a08.py")
+
+    def test_geo_comparison_is_numeric(self):
+        """last-digit noise passes, a changed coordinate, count or keyword does not."""
+        base = "Point(2) = {3.559814036303e-01, -7.302101151309e-05, 0.0, lc};\nspan = 0.1;\n"
+        noisy = "Point(2) = {3.559814036304e-01, -7.302101151311e-05, 0.0, lc};\nspan = 0.1;\n"
+        self.assertEqual(geoDifferences(base, noisy), [])
+        self.assertEqual(geoDifferences(base, base.replace("3.559814036303e-01", "3.56e-01")),
+                         ["number 3.559814036303e-01 vs 3.56e-01"])
+        self.assertNotEqual(geoDifferences(base, base.replace("Point(2)", "Point(3)")), [])
+        self.assertNotEqual(geoDifferences(base, base.replace(", lc}", ", lcEdge}")), [])
+        self.assertNotEqual(geoDifferences(base, base + "span = 0.1;\n"), [])
 
     def test_aoa_rotates_about_quarter_chord(self):
         up, lo = geo.section(TC, 0.0, CHORD, aoaDeg=5.0)

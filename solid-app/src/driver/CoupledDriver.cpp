@@ -477,7 +477,9 @@ void CoupledDriver::Impl::acceptLevel(LevelRecord& record, double levelSeconds, 
     {
         const auto values = p->values(solid);
         record.probes.insert(record.probes.end(), values.begin(), values.end());
-        probeText += "; " + p->describe(values);
+        const std::string text = p->describe(values);
+        if (!text.empty())
+            probeText += "; " + text;
     }
     record.wallSeconds = wallOffset + secondsSince(runStart);
     log.interfaceState(record, solid.wettedNodeCoordinates(), solverOutput, nodalForce);

@@ -68,4 +68,37 @@ std::string SectionAngleProbe::describe(const std::vector<double>& v) const
     return s.str();
 }
 
+namespace
+{
+const char* const voigt[6] = {"xx", "yy", "zz", "xy", "yz", "xz"};
+} // namespace
+
+std::vector<std::string> NodeStressProbe::columns() const
+{
+    std::vector<std::string> c;
+    for (const char* quantity : {"_sigma_", "_eps_"})
+        for (const char* component : voigt)
+            c.push_back(name_ + quantity + component);
+    return c;
+}
+
+std::vector<double> NodeStressProbe::values(const fe::StructuralSolver& solid) const
+{
+    const auto at = solid.stressAndStrainAt({node_}).front();
+    std::vector<double> v(at.stress.data(), at.stress.data() + 6);
+    v.insert(v.end(), at.strain.data(), at.strain.data() + 6);
+    return v;
+}
+
+std::vector<std::string> ReactionProbe::columns() const
+{
+    return {"reaction_" + surface_ + "_x", "reaction_" + surface_ + "_y", "reaction_" + surface_ + "_z"};
+}
+
+std::vector<double> ReactionProbe::values(const fe::StructuralSolver& solid) const
+{
+    const Eigen::Vector3d r = solid.reactionForce(surface_);
+    return {r.x(), r.y(), r.z()};
+}
+
 } // namespace fsi::driver

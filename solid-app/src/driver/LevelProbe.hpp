@@ -26,7 +26,8 @@ public:
     // One value per column at the solid's current (just accepted) state. Called on every rank;
     // the solid's displacement is replicated, so the values are the same on every rank.
     virtual std::vector<double> values(const fe::StructuralSolver& solid) const = 0;
-    // Short text for the console's level line, e.g. "tip_le u = (1e-3, 2e-3, 0) m".
+    // Short text for the console's level line, e.g. "tip_le u = (1e-3, 2e-3, 0) m"; empty:
+    // nothing on the console (history.csv only).
     virtual std::string describe(const std::vector<double>& values) const = 0;
 };
 
@@ -59,6 +60,36 @@ public:
 private:
     SectionAngleParameters params_;
     int leading_ = -1, trailing_ = -1;
+};
+
+// Cauchy stress [Pa] and strain [-] (tensor shear; Green-Lagrange under total Lagrangian) at a
+// named node, volume-averaged over its cells: columns NAME_sigma_xx..xz, NAME_eps_xx..xz
+// (Voigt order xx, yy, zz, xy, yz, xz). Collective (every rank calls values()).
+class NodeStressProbe final : public LevelProbe
+{
+public:
+    NodeStressProbe(std::string name, int node) : name_(std::move(name)), node_(node) {}
+    std::vector<std::string> columns() const override;
+    std::vector<double> values(const fe::StructuralSolver& solid) const override;
+    std::string describe(const std::vector<double>&) const override { return {}; }
+
+private:
+    std::string name_;
+    int node_;
+};
+
+// Reaction force [N] of the supports on a surface group (a clamped group): columns
+// reaction_GROUP_x/y/z.
+class ReactionProbe final : public LevelProbe
+{
+public:
+    explicit ReactionProbe(std::string surface) : surface_(std::move(surface)) {}
+    std::vector<std::string> columns() const override;
+    std::vector<double> values(const fe::StructuralSolver& solid) const override;
+    std::string describe(const std::vector<double>&) const override { return {}; }
+
+private:
+    std::string surface_;
 };
 
 using LevelProbes = std::vector<std::unique_ptr<LevelProbe>>;

@@ -94,6 +94,13 @@ int runCoupled(const std::string& configFile, const std::string& outputFolder, b
                     w.name, mesh.nearestNode({w.point[0], w.point[1], w.point[2]})));
             if (params.sectionAngle)
                 probes.push_back(std::make_unique<SectionAngleProbe>(*params.sectionAngle, mesh));
+            // history.csv as in the standalone mode: stress and strain at the watch points, the
+            // reaction force of each clamped group
+            for (const auto& w : cfg.output.watch)
+                probes.push_back(std::make_unique<NodeStressProbe>(
+                    w.name, mesh.nearestNode({w.point[0], w.point[1], w.point[2]})));
+            for (const auto& group : cfg.mesh.clamped)
+                probes.push_back(std::make_unique<ReactionProbe>(group));
             CoupledDriver driver(comm, solid, &fluid, params, out, cfg.material.relaxationTimes(),
                                  std::move(probes));
             driver.setRestart(restart);

@@ -146,11 +146,17 @@ double TimeSchedule::advance(double relativeChangeOfLastLevel, double pathErrorO
     double next;
     if (params_.type == "adaptive")
     {
-        next = time_ + nextStepCandidate(relativeChangeOfLastLevel, pathErrorOfLastLevel);
+        const double step = nextStepCandidate(relativeChangeOfLastLevel, pathErrorOfLastLevel);
+        next = time_ + step;
         for (double h : params_.hit)
-            if (h > time_ * (1 + timeEps) + timeEps && next > h * (1 - timeEps))
+            if (h > time_ * (1 + timeEps) + timeEps)
             {
-                next = h;
+                // land on h; when one step would stop short of h by less than a step, take two
+                // equal steps to h instead of a full step and a sliver
+                if (next > h * (1 - timeEps))
+                    next = h;
+                else if (h - time_ < 2 * step)
+                    next = time_ + 0.5 * (h - time_);
                 break;
             }
         // Do not leave a sliver before the end.

@@ -17,7 +17,8 @@
 //              as the Prony recursion assumes, is of the same order dt^2 u''); levels whose
 //              e_k is unknown (the first two) use the change rule.
 //              dt within [min_step, max_step]; `hit` times (e.g. 50, 360 s) are landed on
-//              exactly. first_step defaults to min(tau_i)/10 from the Prony series.
+//              exactly (two equal steps when one would leave a sliver before the hit time).
+//              first_step defaults to min(tau_i)/10 from the Prony series.
 #pragma once
 
 #include <limits>

@@ -170,6 +170,7 @@ StructuralSolver::StructuralSolver(MPI_Comm comm, const mesh::Mesh& mesh,
     uCommitted_ = u_;
     fextCommitted_.assign(nDofs, 0.0);
     linearProblem_ = problem_.kinematics == material::Kinematics::SmallStrain && law_.isLinearInStrain();
+    fintAtU_ = fextAtU_ = fintCommitted_ = fextCommitted_;
 }
 
 StructuralSolver::~StructuralSolver() = default;
@@ -336,8 +337,50 @@ bool StructuralSolver::assemble(const std::vector<double>& u, bool withMatrix,
     return true;
 }
 
+bool StructuralSolver::admissible(const std::vector<double>& u) const
+{
+    if (problem_.kinematics != Kinematics::TotalLagrangian)
+        return true;
+    const auto& cells = mesh_.cells;
+    int ok = 1;
+    for (std::size_t k = 0; k < ownCells_.size() && ok; ++k)
+    {
+        const int c = ownCells_[k];
+        const int n = cells.numNodes(c);
+        CellQuadrature cq{n, pointOffset_[k + 1] - pointOffset_[k], quad_.data() + quadOffset_[k]};
+        Eigen::Matrix3Xd ue(3, n);
+        for (int a = 0; a < n; ++a)
+            for (int i = 0; i < 3; ++i)
+                ue(i, a) = u[3 * cells.nodes(c)[a] + i];
+        for (int q = 0; q < cq.numPoints && ok; ++q)
+            ok =
+                (Eigen::Matrix3d::Identity() + displacementGradient(cq, q, ue)).determinant() > 0.0;
+    }
+    MPI_Allreduce(MPI_IN_PLACE, &ok, 1, MPI_INT, MPI_MIN, comm_);
+    return ok != 0;
+}
+
+bool StructuralSolver::newtonWithPolicy(const std::vector<double>& fext, double factor,
+                                        std::vector<double>& u, SolveReport& report)
+{
+    const LineSearch policy = problem_.newton.lineSearch;
+    if (policy != LineSearch::Fallback)
+        return newton(fext, factor, u, report, policy == LineSearch::Always);
+    const std::vector<double> start = u;
+    if (newton(fext, factor, u, report, false))
+        return true;
+    const int plainIterations = report.newtonIterations;
+    if (problem_.printIterations && rank_ == 0)
+        std::printf("    %s -> retrying with the line search\n", report.message.c_str());
+    u = start;
+    report.newtonIterations = 0;
+    const bool ok = newton(fext, factor, u, report, true);
+    report.newtonIterations += plainIterations;
+    return ok;
+}
+
 bool StructuralSolver::newton(const std::vector<double>& fext, double factor,
-                              std::vector<double>& u, SolveReport& report)
+                              std::vector<double>& u, SolveReport& report, bool lineSearch)
 {
     const auto& nw = problem_.newton;
     applyPrescribed(factor, u);
@@ -372,9 +415,16 @@ bool StructuralSolver::newton(const std::vector<double>& fext, double factor,
     {
         report.referenceForce = ref;
         report.finalResidual = norm;
-        lastResidual_ = norm;
         if (norm <= nw.residualTolerance * ref + nw.absoluteTolerance)
+        {
+            if (!admissible(u))
+            {
+                report.message = "Newton converged to an inverted configuration (det F <= 0)";
+                return false;
+            }
+            fintConverged_ = fint; // the last assembly was at u
             return true;
+        }
         if (it >= nw.maxIterations)
         {
             char text[160];
@@ -424,7 +474,7 @@ bool StructuralSolver::newton(const std::vector<double>& fext, double factor,
                 "Newton stalled: every step along the Newton direction is inadmissible";
             return false;
         }
-        if (nw.lineSearch && s0 > 0.0)
+        if (lineSearch && s0 > 0.0)
         {
             double sAlpha = directional();
             for (int k = 0; k < 5 && std::abs(sAlpha) > 0.5 * s0; ++k)
@@ -483,13 +533,13 @@ SolveReport StructuralSolver::solve(const material::TimeStep& step, const Interf
 
 // A linear level (small strain, a law linear in the strain) whose last solve converged at the
 // same step and load factor: R(u + du) = R(u) + (f_new - f_old) - K du, so du = K^-1 (f_new -
-// f_old) keeps the converged residual, with the factorization already in place (no assembly).
-// Declined (false, nothing changed) for non-finite loads or loads that shrink by more than 10x
-// (the relative tolerance of the last solve would not carry over).
+// f_old) keeps the converged residual, with the factorization already in place. One residual
+// assembly (no matrix) checks it and gives f_int for the reactions. Declined (false, nothing
+// changed) for non-finite loads or a residual above the tolerance: Newton then runs.
 bool StructuralSolver::linearUpdate(const std::vector<double>& fTarget, SolveReport& report)
 {
     std::vector<double> du(numFree_, 0.0);
-    double change2 = 0.0, target2 = 0.0, last2 = 0.0;
+    double change2 = 0.0;
     for (int dof = 0; dof < numDofs(); ++dof)
     {
         const int eq = equation_[dof];
@@ -497,25 +547,43 @@ bool StructuralSolver::linearUpdate(const std::vector<double>& fTarget, SolveRep
             continue;
         const double d = fTarget[dof] - fextLast_[dof];
         change2 += d * d;
-        target2 += fTarget[dof] * fTarget[dof];
-        last2 += fextLast_[dof] * fextLast_[dof];
         if (rank_ == 0)
             du[eq] = d;
     }
-    if (!std::isfinite(change2) || target2 < 1e-2 * last2)
+    if (!std::isfinite(change2))
         return false; // Newton diagnoses non-finite loads
     const double linearStart = MPI_Wtime();
     linear_->solveSummedRhs(du);
     linearSeconds_ += MPI_Wtime() - linearStart;
+    std::vector<double> u = u_, fint;
     for (int dof = 0; dof < numDofs(); ++dof)
         if (equation_[dof] >= 0)
-            u_[dof] += du[equation_[dof]];
+            u[dof] += du[equation_[dof]];
+    if (!assemble(u, false, fint))
+        return false;
+    std::vector<double> R(numDofs());
+    double fe2 = 0.0, fi2 = 0.0;
+    for (int dof = 0; dof < numDofs(); ++dof)
+    {
+        R[dof] = fTarget[dof] - fint[dof];
+        fe2 += fTarget[dof] * fTarget[dof];
+        fi2 += fint[dof] * fint[dof];
+    }
+    const double norm = freeNorm(R), ref = std::max(std::sqrt(fe2), std::sqrt(fi2));
+    const auto& nw = problem_.newton;
+    if (!(norm <= nw.residualTolerance * ref + nw.absoluteTolerance))
+        return false;
+    u_.swap(u);
     fextLast_ = fTarget;
+    fintConverged_ = fintAtU_ = fint;
+    fextAtU_ = fTarget;
+    atAcceptedState_ = false;
     report.converged = true;
     report.newtonIterations = 1;
     report.initialResidual = std::sqrt(change2);
-    report.finalResidual = lastResidual_;
-    report.referenceForce = std::sqrt(target2);
+    report.finalResidual = norm;
+    report.referenceForce = ref;
+    report.residuals = {norm};
     report.message = "linear update of the last converged solve (same tangent, new loads)";
     return true;
 }
@@ -539,10 +607,18 @@ SolveReport StructuralSolver::solveLevel(const material::TimeStep& step,
     std::vector<double> u = lastConverged_ ? u_ : uCommitted_;
     fextLast_ = fTarget;
     factorLast_ = loadFactor;
-    if (newton(fTarget, loadFactor, u, report))
+    const auto converged = [&](std::vector<double>& solution)
     {
-        u_ = u;
+        u_.swap(solution);
+        fintAtU_ = fintConverged_;
+        fextAtU_ = fTarget;
+        solvedStep_ = step;
+        atAcceptedState_ = false;
         lastConverged_ = true;
+    };
+    if (newtonWithPolicy(fTarget, loadFactor, u, report))
+    {
+        converged(u);
         report.converged = true;
         linearUpdateReady_ = linearProblem_;
         return report;
@@ -564,7 +640,8 @@ SolveReport StructuralSolver::solveLevel(const material::TimeStep& step,
             for (int dof = 0; dof < numDofs(); ++dof)
                 f[dof] = fextCommitted_[dof] + lambda * (fTarget[dof] - fextCommitted_[dof]);
             SolveReport sub;
-            ok = newton(f, factorCommitted_ + lambda * (loadFactor - factorCommitted_), u, sub);
+            ok = newtonWithPolicy(f, factorCommitted_ + lambda * (loadFactor - factorCommitted_), u,
+                                  sub);
             iterations += sub.newtonIterations;
             report.residuals = sub.residuals;
             report.finalResidual = sub.finalResidual;
@@ -573,8 +650,7 @@ SolveReport StructuralSolver::solveLevel(const material::TimeStep& step,
         }
         if (ok)
         {
-            u_ = u;
-            lastConverged_ = true;
+            converged(u);
             report.converged = true;
             linearUpdateReady_ = linearProblem_;
             report.loadCuts = cuts;
@@ -625,6 +701,8 @@ void StructuralSolver::acceptLevel()
     fextCommitted_ = fextLast_;
     factorCommitted_ = factorLast_;
     linearUpdateReady_ = false; // the history changed: the residual must be assembled anew
+    fintCommitted_ = fintAtU_;
+    atAcceptedState_ = true;
 }
 
 void StructuralSolver::rejectLevel()
@@ -633,6 +711,9 @@ void StructuralSolver::rejectLevel()
     u_ = uCommitted_;
     fextLast_ = fextCommitted_;
     factorLast_ = factorCommitted_;
+    fintAtU_ = fintCommitted_;
+    fextAtU_ = fextCommitted_;
+    atAcceptedState_ = true;
     lastConverged_ = true;
 }
 
@@ -690,6 +771,10 @@ void StructuralSolver::restoreCommittedState(const std::vector<CommittedState>& 
     uCommitted_ = u_ = parts[0].displacement;
     fextCommitted_ = fextLast_ = parts[0].externalForces;
     factorCommitted_ = factorLast_ = parts[0].loadFactor;
+    fextAtU_ = fextCommitted_;
+    fintAtU_.assign(nDofs, std::nan("")); // not checkpointed: known after the next solve
+    fintCommitted_ = fintAtU_;
+    atAcceptedState_ = true;
     lastConverged_ = true;
 }
 
@@ -711,67 +796,137 @@ std::vector<double> StructuralSolver::wettedNodeDisplacements() const
     return d;
 }
 
-void StructuralSolver::cauchyStress(std::vector<Vector6>& nodal,
-                                    std::vector<Vector6>& cellStress) const
+Vector6 StructuralSolver::pointStress(std::size_t k, int q, const Vector6& strain) const
 {
-    const auto& cells = mesh_.cells;
     const std::size_t hs = law_.historySize();
-    std::vector<double> nodeSum(7 * mesh_.numNodes(), 0.0), cellSum(6 * cells.size(), 0.0);
+    const double* history =
+        hs ? committedHistory_.data() + static_cast<std::size_t>(pointOffset_[k] + q) * hs
+           : nullptr;
+    if (atAcceptedState_) // committedHistory_ already holds this level's increment
+        return law_.acceptedStress(strain, history);
     Vector6 stress;
     material::Matrix6 D;
+    law_.evaluate(strain, solvedStep_, history, stress, D);
+    return stress;
+}
+
+void StructuralSolver::accumulateFields(const std::vector<char>& cellFilter,
+                                        std::vector<double>& nodeSum,
+                                        std::vector<double>* cellSum) const
+{
+    const auto& cells = mesh_.cells;
+    nodeSum.assign(13 * static_cast<std::size_t>(mesh_.numNodes()), 0.0);
+    if (cellSum)
+        cellSum->assign(6 * static_cast<std::size_t>(cells.size()), 0.0);
     for (std::size_t k = 0; k < ownCells_.size(); ++k)
     {
         const int c = ownCells_[k];
+        if (!cellFilter.empty() && !cellFilter[c])
+            continue;
         const int n = cells.numNodes(c);
         CellQuadrature cq{n, pointOffset_[k + 1] - pointOffset_[k], quad_.data() + quadOffset_[k]};
         Eigen::Matrix3Xd ue(3, n);
         for (int a = 0; a < n; ++a)
             for (int i = 0; i < 3; ++i)
                 ue(i, a) = u_[3 * cells.nodes(c)[a] + i];
-        Vector6 mean = Vector6::Zero();
+        Vector6 meanStress = Vector6::Zero(), meanStrain = Vector6::Zero();
         double volume = 0.0;
         for (int q = 0; q < cq.numPoints; ++q)
         {
             const Eigen::Matrix3d H = displacementGradient(cq, q, ue);
             const Eigen::Matrix3d F = Eigen::Matrix3d::Identity() + H;
+            Vector6 strain = strainFromH(H, problem_.kinematics);
+            Vector6 stress;
             try
             {
-                law_.evaluate(strainFromH(H, problem_.kinematics), step_,
-                              hs ? committedHistory_.data() + (pointOffset_[k] + q) * hs : nullptr,
-                              stress, D);
+                stress = pointStress(k, q, strain);
             }
             catch (const material::InadmissibleDeformation&)
             {
                 stress.setConstant(std::nan(""));
             }
-            mean += cq.weight(q) * cauchyFromMaterialStress(stress, F, problem_.kinematics);
+            strain.tail<3>() *= 0.5; // engineering -> tensor shear
+            meanStress += cq.weight(q) * cauchyFromMaterialStress(stress, F, problem_.kinematics);
+            meanStrain += cq.weight(q) * strain;
             volume += cq.weight(q);
         }
-        for (int i = 0; i < 6; ++i)
-            cellSum[6 * c + i] = mean[i] / volume;
+        if (cellSum)
+            for (int i = 0; i < 6; ++i)
+                (*cellSum)[6 * c + i] = meanStress[i] / volume;
         for (int a = 0; a < n; ++a)
         {
+            double* sum = nodeSum.data() + 13 * static_cast<std::size_t>(cells.nodes(c)[a]);
             for (int i = 0; i < 6; ++i)
-                nodeSum[7 * cells.nodes(c)[a] + i] += mean[i];
-            nodeSum[7 * cells.nodes(c)[a] + 6] += volume;
+            {
+                sum[i] += meanStress[i];
+                sum[6 + i] += meanStrain[i];
+            }
+            sum[12] += volume;
         }
     }
     if (size_ > 1)
     {
         MPI_Allreduce(MPI_IN_PLACE, nodeSum.data(), static_cast<int>(nodeSum.size()), MPI_DOUBLE,
                       MPI_SUM, comm_);
-        MPI_Allreduce(MPI_IN_PLACE, cellSum.data(), static_cast<int>(cellSum.size()), MPI_DOUBLE,
-                      MPI_SUM, comm_);
+        if (cellSum)
+            MPI_Allreduce(MPI_IN_PLACE, cellSum->data(), static_cast<int>(cellSum->size()),
+                          MPI_DOUBLE, MPI_SUM, comm_);
     }
+}
+
+void StructuralSolver::cauchyStress(std::vector<Vector6>& nodal,
+                                    std::vector<Vector6>& cellStress) const
+{
+    std::vector<double> nodeSum, cellSum;
+    accumulateFields({}, nodeSum, &cellSum);
     nodal.assign(mesh_.numNodes(), Vector6::Zero());
-    cellStress.assign(cells.size(), Vector6::Zero());
+    cellStress.assign(mesh_.cells.size(), Vector6::Zero());
     for (int node = 0; node < mesh_.numNodes(); ++node)
-        for (int i = 0; i < 6; ++i)
-            nodal[node][i] =
-                nodeSum[7 * node + 6] > 0 ? nodeSum[7 * node + i] / nodeSum[7 * node + 6] : 0.0;
-    for (int c = 0; c < cells.size(); ++c)
+        if (nodeSum[13 * node + 12] > 0.0)
+            for (int i = 0; i < 6; ++i)
+                nodal[node][i] = nodeSum[13 * node + i] / nodeSum[13 * node + 12];
+    for (int c = 0; c < mesh_.cells.size(); ++c)
         for (int i = 0; i < 6; ++i)
             cellStress[c][i] = cellSum[6 * c + i];
+}
+
+std::vector<StructuralSolver::NodalStressStrain>
+StructuralSolver::stressAndStrainAt(const std::vector<int>& nodes) const
+{
+    const auto& cells = mesh_.cells;
+    std::vector<char> wanted(mesh_.numNodes(), 0), cellFilter(cells.size(), 0);
+    for (int node : nodes)
+    {
+        if (node < 0 || node >= mesh_.numNodes())
+            throw std::out_of_range("StructuralSolver::stressAndStrainAt: node " +
+                                    std::to_string(node) + " is not a node of the mesh");
+        wanted[node] = 1;
+    }
+    for (int c = 0; c < cells.size(); ++c)
+        for (int a = 0; a < cells.numNodes(c) && !cellFilter[c]; ++a)
+            cellFilter[c] = wanted[cells.nodes(c)[a]];
+    std::vector<double> nodeSum;
+    accumulateFields(cellFilter, nodeSum, nullptr);
+    std::vector<NodalStressStrain> out(nodes.size());
+    for (std::size_t k = 0; k < nodes.size(); ++k)
+    {
+        const double* sum = nodeSum.data() + 13 * static_cast<std::size_t>(nodes[k]);
+        for (int i = 0; i < 6; ++i)
+        {
+            out[k].stress[i] = sum[12] > 0.0 ? sum[i] / sum[12] : 0.0;
+            out[k].strain[i] = sum[12] > 0.0 ? sum[6 + i] / sum[12] : 0.0;
+        }
+    }
+    return out;
+}
+
+Eigen::Vector3d StructuralSolver::reactionForce(const std::string& surface) const
+{
+    Eigen::Vector3d r = Eigen::Vector3d::Zero();
+    for (int node : mesh_.surface(surface).nodes)
+        for (int i = 0; i < 3; ++i)
+            r[i] += fintAtU_[3 * node + i] - fextAtU_[3 * node + i];
+    return r;
 }
 
 } // namespace fsi::fe

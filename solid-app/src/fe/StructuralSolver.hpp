@@ -37,12 +37,26 @@
 namespace fsi::fe
 {
 
+// Energy line search (Crisfield: secant on s(alpha) = du . R(u + alpha du)):
+//   Fallback  full Newton steps first; only if that attempt fails (stall, divergence,
+//             inadmissible step) the same start is retried with the line search. Where plain
+//             Newton converges it takes the same iterations (slender finite-strain problems:
+//             the line search would shorten good steps whose residual grows on the way).
+//   Always    the line search on every step.
+//   Never     plain Newton (then load cuts).
+enum class LineSearch
+{
+    Fallback,
+    Always,
+    Never
+};
+
 struct NewtonSettings
 {
     int maxIterations = 25;
     double residualTolerance = 1e-8;  // ||R_free|| <= rtol * max(||f_ext||, ||f_int||) + atol
     double absoluteTolerance = 1e-10; // [N]
-    bool lineSearch = true;           // backtracking on ||R|| (halving, up to 1/16)
+    LineSearch lineSearch = LineSearch::Fallback;
     int maxLoadCuts = 6;              // failed level: retry in 2, 4, ... 2^k load sub-steps
 };
 
@@ -148,10 +162,34 @@ public:
     std::vector<double> wettedNodeCoordinates() const;             // 3 per node [m]
     std::vector<double> wettedNodeDisplacements() const;           // 3 per node [m]
     const std::vector<int>& wettedNodes() const { return wettedNodes_; }
-    // Nodal (volume-averaged) and cell-averaged Cauchy stress, Voigt tensor shear [Pa], at the
-    // last solved state; replicated on every rank.
+    // --- Results of the CURRENT state: the last converged solve, or, after acceptLevel() /
+    // rejectLevel() / restoreCommittedState(), the last accepted level. An accepted level's
+    // stress is that of its own solve (its history increment included): evaluating it after the
+    // commit does not re-apply the level's relaxation step. Collective; replicated on every rank.
+
+    // Nodal (volume-averaged) and cell-averaged Cauchy (true) stress, Voigt order xx yy zz xy yz
+    // xz, tensor shear [Pa]. Small strain: the stress of the law; total Lagrangian:
+    // sigma = J^-1 F S F^T, in the deformed configuration, given at the reference nodes/cells.
     void cauchyStress(std::vector<material::Vector6>& nodal,
                       std::vector<material::Vector6>& cells) const;
+
+    struct NodalStressStrain
+    {
+        material::Vector6 stress; // Cauchy [Pa], as cauchyStress()
+        material::Vector6 strain; // [-], tensor shear (eps_xy, not gamma_xy): small strain eps,
+                                  // total Lagrangian Green-Lagrange E (reference configuration)
+    };
+    // Volume averages over the cells around each of `nodes` (node ids of the mesh), computed on
+    // those cells only (cheap for a few watch points).
+    std::vector<NodalStressStrain> stressAndStrainAt(const std::vector<int>& nodes) const;
+
+    // Reaction force [N] on a surface group: the sum over its nodes of f_int - f_ext, the force
+    // the supports exert on the body there (a node in two groups counts in both). For a clamped
+    // group in equilibrium it balances the loads: sum over all supports = -(total load). On free
+    // dofs the sum is the equilibrium residual (about 0). Throws std::runtime_error for a name
+    // that is not a group of the mesh. After restoreCommittedState() it is NaN until the next
+    // solve (the internal forces are not checkpointed).
+    Eigen::Vector3d reactionForce(const std::string& surface) const;
 
     const mesh::Mesh& mesh() const { return mesh_; }
     int numDofs() const { return 3 * mesh_.numNodes(); }
@@ -171,8 +209,21 @@ private:
                             std::vector<double>& f) const;
     void applyPrescribed(double factor, std::vector<double>& u) const;
     bool newton(const std::vector<double>& fext, double factor, std::vector<double>& u,
-                SolveReport& report);
+                SolveReport& report, bool lineSearch);
+    // newton() with the configured line-search policy (Fallback: plain, then line search).
+    bool newtonWithPolicy(const std::vector<double>& fext, double factor, std::vector<double>& u,
+                          SolveReport& report);
     double freeNorm(const std::vector<double>& v) const;
+    // Total Lagrangian: det F > 0 at every integration point of every cell (collective). A
+    // law without its own check (St Venant-Kirchhoff) has equilibria in inverted configurations
+    // that full Newton steps can reach.
+    bool admissible(const std::vector<double>& u) const;
+    // Material stress (law's measure) at integration point q of own cell k for the current state.
+    material::Vector6 pointStress(std::size_t k, int q, const material::Vector6& strain) const;
+    // Volume-weighted sums over own cells (all if cellFilter is empty) of the Cauchy stress and
+    // strain; collective. nodal: 13 per node (stress 6, strain 6, volume); cellMeans: 6 per cell.
+    void accumulateFields(const std::vector<char>& cellFilter, std::vector<double>& nodal,
+                          std::vector<double>* cellMeans) const;
 
     MPI_Comm comm_;
     int rank_ = 0, size_ = 1;
@@ -211,7 +262,13 @@ private:
     // one back-substitution with the level's factorization (linearUpdate).
     bool linearProblem_ = false;
     bool linearUpdateReady_ = false; // the last solve converged on this level's tangent
-    double lastResidual_ = 0.0;      // [N] of the last Newton iterate
+    // The current state u_ is an accepted level (stress from the accepted history) or the last
+    // converged solve at solvedStep_ (stress from the committed history and the step).
+    bool atAcceptedState_ = true;
+    material::TimeStep solvedStep_{};
+    std::vector<double> fintConverged_;     // f_int of the last converged Newton solve [N]
+    std::vector<double> fintAtU_, fextAtU_; // f_int, f_ext of the current state [N]
+    std::vector<double> fintCommitted_;     // ... of the last accepted level
 };
 
 } // namespace fsi::fe

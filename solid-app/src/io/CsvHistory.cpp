@@ -4,14 +4,17 @@
 #include "io/AtomicFile.hpp"
 
 #include <cstdio>
+#include <stdexcept>
+#include <string>
 
 namespace fsi::io
 {
 
 CsvHistory::CsvHistory(std::string path, const mesh::Mesh& mesh,
                        const std::vector<std::string>& names,
-                       const std::vector<std::array<double, 3>>& points)
-    : path_(std::move(path))
+                       const std::vector<std::array<double, 3>>& points,
+                       const std::vector<std::string>& extraColumns)
+    : path_(std::move(path)), extraColumns_(extraColumns.size())
 {
     header_ = "time";
     for (std::size_t k = 0; k < names.size(); ++k)
@@ -22,11 +25,17 @@ CsvHistory::CsvHistory(std::string path, const mesh::Mesh& mesh,
         distances_.push_back((mesh.nodes.col(node) - x).norm());
         header_ += "," + names[k] + "_ux," + names[k] + "_uy," + names[k] + "_uz";
     }
+    for (const auto& column : extraColumns)
+        header_ += "," + column;
     header_ += "\n";
 }
 
-void CsvHistory::record(double time, const std::vector<double>& u)
+void CsvHistory::record(double time, const std::vector<double>& u, const std::vector<double>& extra)
 {
+    if (extra.size() != extraColumns_)
+        throw std::invalid_argument("CsvHistory::record: " + std::to_string(extra.size()) +
+                                    " extra values for " + std::to_string(extraColumns_) +
+                                    " extra columns");
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.10g", time);
     rows_ += buf;
@@ -36,6 +45,11 @@ void CsvHistory::record(double time, const std::vector<double>& u)
             std::snprintf(buf, sizeof buf, ",%.12e", u[3 * node + i]);
             rows_ += buf;
         }
+    for (double v : extra)
+    {
+        std::snprintf(buf, sizeof buf, ",%.12e", v);
+        rows_ += buf;
+    }
     rows_ += "\n";
     writeFileAtomically(path_, header_ + rows_);
 }

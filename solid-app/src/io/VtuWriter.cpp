@@ -153,6 +153,13 @@ void stressArrays(ArrayWriter& w, const std::vector<Vector6>& s)
 
 } // namespace
 
+const char* const kFieldNote =
+    "<!-- solid-app fields (reference configuration; warp by displacement): displacement [m]; "
+    "cauchy_stress = Cauchy (true) stress sigma [Pa], components xx yy zz xy yz xz (tensor "
+    "shear), small strain: the stress of the law, total Lagrangian: sigma = J^-1 F S F^T; "
+    "von_mises = von Mises equivalent of sigma [Pa]; point data: volume-weighted averages of "
+    "the cells around each node, cell data: cell averages -->";
+
 double vonMisesStress(const Vector6& s)
 {
     const double a = s[0] - s[1], b = s[1] - s[2], c = s[2] - s[0];
@@ -176,7 +183,9 @@ void writeVtu(const std::string& path, const mesh::Mesh& mesh, const SolidFields
         offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
     }
     std::ostringstream out;
-    out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
+    out << "<?xml version=\"1.0\"?>\n"
+        << kFieldNote << "\n"
+        << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
            "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n  <UnstructuredGrid>\n"
         << "    <Piece NumberOfPoints=\"" << mesh.numNodes() << "\" NumberOfCells=\""
         << cells.size() << "\">\n";

@@ -25,6 +25,7 @@ struct SolidFields
 
 // Writes one .vtu (atomically). binary: inline base64 raw data, else ASCII.
 // Point data: displacement, cauchy_stress (xx yy zz xy yz xz), von_mises; cell data likewise.
+// The file names its fields, units and the stress measure in an XML comment (kFieldNote).
 void writeVtu(const std::string& path, const mesh::Mesh& mesh, const SolidFields& fields,
               bool binary);
 
@@ -41,6 +42,9 @@ private:
     std::string path_;
     std::vector<std::pair<double, std::string>> entries_;
 };
+
+// The comment at the top of every .vtu: fields, units, stress measure (Cauchy).
+extern const char* const kFieldNote;
 
 // Von Mises equivalent of a Voigt stress (tensor shear) [Pa].
 double vonMisesStress(const Vector6& s);

@@ -7,6 +7,7 @@
 #include "material/Viscoelastic.hpp"
 
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 namespace fsi::material
@@ -16,6 +17,16 @@ void Material::initialiseHistory(double* history) const
 {
     for (std::size_t i = 0; i < historySize(); ++i)
         history[i] = 0.0;
+}
+
+Vector6 Material::acceptedStress(const Vector6& strain, const double* newHistory) const
+{
+    if (historySize() != 0)
+        throw std::logic_error(name() + ": a law with history must override acceptedStress()");
+    Vector6 stress;
+    Matrix6 tangent;
+    evaluate(strain, TimeStep{0.0, 0.0}, newHistory, stress, tangent);
+    return stress;
 }
 
 Matrix6 Material::initialTangent() const

@@ -74,6 +74,13 @@ public:
     // level is linear. Default false.
     virtual bool isLinearInStrain() const { return false; }
 
+    // Stress of an ACCEPTED level from its own history: newHistory is what updateHistory()
+    // wrote for this strain, so the result equals evaluate(strain, step, committedHistory) of
+    // that level, without the level's step or the history before it (output after the commit,
+    // after a restart). Default: laws with historySize() == 0 (evaluate at any step); laws with
+    // history must override it (the default throws std::logic_error for them).
+    virtual Vector6 acceptedStress(const Vector6& strain, const double* newHistory) const;
+
     // Virgin (t = 0, unstrained) history; zeros by default.
     virtual void initialiseHistory(double* history) const;
 

@@ -69,4 +69,15 @@ void Viscoelastic::updateHistory(const Vector6& strain, const TimeStep& step, co
     Map(newHistory + 6 * n) = devSigma0;
 }
 
+Vector6 Viscoelastic::acceptedStress(const Vector6& strain, const double* newHistory) const
+{
+    if (newHistory == nullptr)
+        throw std::invalid_argument("viscoelastic: accepted history is null (historySize() > 0)");
+    Vector6 stress = 2.0 * longTermShearModulus_ * (deviatoricProjector() * strain);
+    for (std::size_t i = 0; i < gamma_.size(); ++i)
+        stress += ConstMap(newHistory + 6 * i);
+    stress.head<3>().array() += bulkModulus_ * trace(strain);
+    return stress;
+}
+
 } // namespace fsi::material

@@ -39,6 +39,9 @@ public:
                   Vector6& stress, Matrix6& tangent) const override;
     void updateHistory(const Vector6& strain, const TimeStep& step, const double* committedHistory,
                        double* newHistory) const override;
+    // K tr(eps) I + dev sigma0(eps) + sum_i h_i^{n+1}: the h_i of newHistory already hold the
+    // level's increment.
+    Vector6 acceptedStress(const Vector6& strain, const double* newHistory) const override;
 
     std::size_t termCount() const { return gamma_.size(); }
 
