@@ -130,10 +130,11 @@ double cookCompliance(const CookRun& r)
 TEST(CookMembrane, ProjectedDilatationHexahedraMatchThePublishedReference)
 {
     const auto pd = fe::Formulation::ProjectedDilatation;
-    const std::vector<std::pair<CookRun, double>> runs = {
-        {{Kind::Hex27, 4, pd}, 0.01},  {{Kind::Hex27, 8, pd}, 0.003},
-        {{Kind::Hex27, 16, pd}, 0.001}, {{Kind::Hex20, 16, pd}, 0.01},
-        {{Kind::Hex8, 32, pd}, 0.01}};
+    const std::vector<std::pair<CookRun, double>> runs = {{{Kind::Hex27, 4, pd}, 0.01},
+                                                          {{Kind::Hex27, 8, pd}, 0.003},
+                                                          {{Kind::Hex27, 16, pd}, 0.001},
+                                                          {{Kind::Hex20, 16, pd}, 0.01},
+                                                          {{Kind::Hex8, 32, pd}, 0.01}};
     std::printf("Cook's membrane, plane strain, lambda = 7500, G = 0.375, F = 1: u_y(48, 52), "
                 "reference %.5f (Krysl, FinEALE)\n",
                 krysl);
@@ -155,7 +156,8 @@ TEST(CookMembrane, DisplacementFormulationLocks)
 {
     const auto rel = [](double v) { return (v - krysl) / krysl; };
     const double hex27n4 = rel(cookCompliance({Kind::Hex27, 4}));
-    const double hex27pdN4 = rel(cookCompliance({Kind::Hex27, 4, fe::Formulation::ProjectedDilatation}));
+    const double hex27pdN4 =
+        rel(cookCompliance({Kind::Hex27, 4, fe::Formulation::ProjectedDilatation}));
     const double hex27n16 = rel(cookCompliance({Kind::Hex27, 16}));
     const double hex8n32 = rel(cookCompliance({Kind::Hex8, 32}));
     const double hex20n16 = rel(cookCompliance({Kind::Hex20, 16}));

@@ -97,13 +97,13 @@ TEST(ProjectedDilatation, PatchTestSmallAndFiniteStrain)
     Eigen::Matrix3d A;
     A << 1.0e-3, 2.0e-4, -3.0e-4, 0.5e-4, -0.7e-3, 1.1e-4, -2.2e-4, 0.3e-4, 0.4e-3;
     const Eigen::Vector3d offset(1e-3, -2e-3, 0.5e-3);
-    for (auto kinematics : {material::Kinematics::SmallStrain, material::Kinematics::TotalLagrangian})
+    for (auto kinematics :
+         {material::Kinematics::SmallStrain, material::Kinematics::TotalLagrangian})
     {
         const bool small = kinematics == material::Kinematics::SmallStrain;
         const Eigen::Matrix3d grad = small ? A : Eigen::Matrix3d(150.0 * A); // TL: finite
-        const auto law = material::makeMaterial(small ? fsi::testing::elastic(2.0e5, 0.4999)
-                                                      : neoHookean(2.0e5, 0.45),
-                                                kinematics);
+        const auto law = material::makeMaterial(
+            small ? fsi::testing::elastic(2.0e5, 0.4999) : neoHookean(2.0e5, 0.45), kinematics);
         // exact stress: the law at the exact strain, pushed forward with the exact F
         const Eigen::Matrix3d F = Eigen::Matrix3d::Identity() + grad;
         const material::Vector6 strain = fe::strainFromH(grad, kinematics);
@@ -275,8 +275,8 @@ TEST(LockingWarning, CellTypesAndPoissonRatio)
     auto visco = viscoelastic(1.0e6, 0.45); // E, nu long-term
     const auto law = material::makeMaterial(visco, material::Kinematics::SmallStrain);
     EXPECT_NEAR(fe::effectivePoissonRatio(*law), 0.45, 1e-9);
-    const auto elastic =
-        material::makeMaterial(fsi::testing::elastic(1.0, 0.4999), material::Kinematics::SmallStrain);
+    const auto elastic = material::makeMaterial(fsi::testing::elastic(1.0, 0.4999),
+                                                material::Kinematics::SmallStrain);
     EXPECT_NEAR(fe::effectivePoissonRatio(*elastic), 0.4999, 1e-12);
 }
 
@@ -284,12 +284,14 @@ TEST(LockingWarning, CellTypesAndPoissonRatio)
 TEST(LockingWarning, PrintedOnceAtStartUp)
 {
     const mesh::Mesh m = skewedHexBlock(TestCell::Hex27, {1, 1, 1});
-    const auto law =
-        material::makeMaterial(fsi::testing::elastic(1.0, 0.4999), material::Kinematics::SmallStrain);
+    const auto law = material::makeMaterial(fsi::testing::elastic(1.0, 0.4999),
+                                            material::Kinematics::SmallStrain);
     fe::ProblemDefinition p;
     p.clamped = {"boundary"};
     ::testing::internal::CaptureStderr();
-    { fe::StructuralSolver locking(MPI_COMM_WORLD, m, *law, p); }
+    {
+        fe::StructuralSolver locking(MPI_COMM_WORLD, m, *law, p);
+    }
     const std::string warned = ::testing::internal::GetCapturedStderr();
     EXPECT_NE(warned.find("warning: "), std::string::npos) << warned;
     EXPECT_NE(warned.find("Hex27"), std::string::npos) << warned;
@@ -297,6 +299,8 @@ TEST(LockingWarning, PrintedOnceAtStartUp)
     EXPECT_EQ(std::count(warned.begin(), warned.end(), '\n'), 1) << warned;
     p.formulation = fe::Formulation::ProjectedDilatation;
     ::testing::internal::CaptureStderr();
-    { fe::StructuralSolver fine(MPI_COMM_WORLD, m, *law, p); }
+    {
+        fe::StructuralSolver fine(MPI_COMM_WORLD, m, *law, p);
+    }
     EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
 }

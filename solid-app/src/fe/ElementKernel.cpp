@@ -49,8 +49,8 @@ std::vector<std::string> lockingCellTypes(const std::vector<CellType>& types,
         return names;
     for (CellType t : types)
     {
-        const bool locks = t == CellType::Tet4 || t == CellType::Prism6 ||
-                           t == CellType::Prism15 || t == CellType::Prism18 ||
+        const bool locks = t == CellType::Tet4 || t == CellType::Prism6 || t == CellType::Prism15 ||
+                           t == CellType::Prism18 ||
                            ((t == CellType::Hex8 || t == CellType::Hex20 || t == CellType::Hex27) &&
                             dilatationModeCount(t, formulation) == 0);
         const std::string& name = mesh::ReferenceElement::get(t).name();
@@ -69,8 +69,8 @@ double effectivePoissonRatio(const material::Material& law)
     {
         Vector6 stress;
         Matrix6 D;
-        law.evaluate(Vector6::Zero(), {dt, dt}, history.empty() ? nullptr : history.data(),
-                     stress, D);
+        law.evaluate(Vector6::Zero(), {dt, dt}, history.empty() ? nullptr : history.data(), stress,
+                     D);
         // isotropic: D00 = K + 4G/3, D01 = K - 2G/3 -> nu = D01 / (D00 + D01)
         nu = std::max(nu, D(0, 1) / (D(0, 0) + D(0, 1)));
     }
@@ -217,8 +217,8 @@ ProjectedKinematics projectedKinematics(const CellQuadrature& cq, const Eigen::M
     {
         if (kinematics == Kinematics::SmallStrain)
         {
-            k.strain[q] = strainFromH(H[q], kinematics) +
-                          (k.volumeBar[q] - k.volume[q]) / 3.0 * unitVoigt;
+            k.strain[q] =
+                strainFromH(H[q], kinematics) + (k.volumeBar[q] - k.volume[q]) / 3.0 * unitVoigt;
             continue;
         }
         if (!(k.volumeBar[q] > 0.0))
@@ -226,8 +226,8 @@ ProjectedKinematics projectedKinematics(const CellQuadrature& cq, const Eigen::M
                 "projected dilatation: projected J <= 0; reduce the load step");
         k.beta[q] = std::pow(k.volumeBar[q] / k.volume[q], 2.0 / 3.0);
         // E_bar = (beta C - I)/2 = beta E + (beta - 1)/2 I, from H (keeps small-strain digits)
-        k.strain[q] = k.beta[q] * strainFromH(H[q], kinematics) +
-                      0.5 * (k.beta[q] - 1.0) * unitVoigt;
+        k.strain[q] =
+            k.beta[q] * strainFromH(H[q], kinematics) + 0.5 * (k.beta[q] - 1.0) * unitVoigt;
     }
     return k;
 }
@@ -278,14 +278,15 @@ void projectedCellResponse(const CellQuadrature& cq, const Eigen::Matrix3Xd& u,
     std::vector<Eigen::MatrixXd> gFinv(np); // n x 3: row a = (F^-T Grad N_a)^T
     for (int q = 0; q < np; ++q)
     {
-        gFinv[q] = small ? Eigen::MatrixXd(cq.dNdX(q)) : Eigen::MatrixXd(cq.dNdX(q) * k.F[q].inverse());
+        gFinv[q] =
+            small ? Eigen::MatrixXd(cq.dNdX(q)) : Eigen::MatrixXd(cq.dNdX(q) * k.F[q].inverse());
         for (int a = 0; a < n; ++a)
             for (int i = 0; i < 3; ++i)
                 A(q, 3 * a + i) = gFinv[q](a, i);
     }
     // delta(volumeBar_q) = Abar.row(q) . delta u; small: P A; TL: P diag(J) A
-    const Eigen::MatrixXd Abar = small ? Eigen::MatrixXd(k.P * A)
-                                       : Eigen::MatrixXd(k.P * (k.volume.asDiagonal() * A));
+    const Eigen::MatrixXd Abar =
+        small ? Eigen::MatrixXd(k.P * A) : Eigen::MatrixXd(k.P * (k.volume.asDiagonal() * A));
     fint.setZero(nd);
     if (K)
         K->setZero(nd, nd);
@@ -316,13 +317,13 @@ void projectedCellResponse(const CellQuadrature& cq, const Eigen::Matrix3Xd& u,
         if (!K)
             continue;
         const double SC = tensorFromVoigt(stress).cwiseProduct(C).sum(); // S_bar : C
-        const Eigen::VectorXd s = B.transpose() * stress;                 // S_bar : delta E
+        const Eigen::VectorXd s = B.transpose() * stress;                // S_bar : delta E
         K->noalias() += w * (Bbar.transpose() * (D * Bbar));
         addGeometricStiffness(g, stress, w * beta, *K);
-        K->noalias() += w * beta *
-                        (0.5 * SC * dg.transpose() * dg + dg.transpose() * s.transpose() +
-                         s * dg);
-        // (w beta S:C / 3) [Delta delta J_bar / J_bar - dJ_bar dJ_bar^T / J_bar^2 - Delta delta ln J]
+        K->noalias() +=
+            w * beta * (0.5 * SC * dg.transpose() * dg + dg.transpose() * s.transpose() + s * dg);
+        // (w beta S:C / 3) [Delta delta J_bar / J_bar - dJ_bar dJ_bar^T / J_bar^2 - Delta delta ln
+        // J]
         const double kappa = w * beta * SC / 3.0;
         K->noalias() -= kappa / (Jbar * Jbar) * Abar.row(q).transpose() * Abar.row(q);
         for (int a = 0; a < n; ++a) // - Delta delta ln J = + tr(F^-1 dH F^-1 DH)

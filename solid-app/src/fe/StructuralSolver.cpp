@@ -705,8 +705,8 @@ void StructuralSolver::cauchyStress(std::vector<Vector6>& nodal,
         }
         catch (const material::InadmissibleDeformation&)
         {
-            points.assign(cq.numPoints, {Vector6::Constant(std::nan("")),
-                                         Eigen::Matrix3d::Identity()});
+            points.assign(cq.numPoints,
+                          {Vector6::Constant(std::nan("")), Eigen::Matrix3d::Identity()});
         }
         for (int q = 0; q < cq.numPoints; ++q)
         {
@@ -720,7 +720,8 @@ void StructuralSolver::cauchyStress(std::vector<Vector6>& nodal,
             {
                 stress.setConstant(std::nan(""));
             }
-            mean += cq.weight(q) * cauchyFromMaterialStress(stress, points[q].F, problem_.kinematics);
+            mean +=
+                cq.weight(q) * cauchyFromMaterialStress(stress, points[q].F, problem_.kinematics);
             volume += cq.weight(q);
         }
         for (int i = 0; i < 6; ++i)
