@@ -271,6 +271,9 @@ TEST(LockingWarning, CellTypesAndPoissonRatio)
     EXPECT_EQ(fe::lockingCellTypes({CellType::Hex20, CellType::Hex8}, disp, 0.45),
               (std::vector<std::string>{"Hex20", "Hex8"}));
     EXPECT_TRUE(fe::lockingCellTypes({CellType::Tet10}, disp, 0.4999).empty());
+    EXPECT_TRUE(fe::lockingCellTypes({CellType::Prism15, CellType::Prism18}, disp, 0.4999).empty());
+    EXPECT_EQ(fe::lockingCellTypes({CellType::Prism6}, pd, 0.4999),
+              std::vector<std::string>{"Prism6"});
     // the effective Poisson ratio of a viscoelastic law is the long-term (most incompressible)
     auto visco = viscoelastic(1.0e6, 0.45); // E, nu long-term
     const auto law = material::makeMaterial(visco, material::Kinematics::SmallStrain);

@@ -49,8 +49,7 @@ std::vector<std::string> lockingCellTypes(const std::vector<CellType>& types,
         return names;
     for (CellType t : types)
     {
-        const bool locks = t == CellType::Tet4 || t == CellType::Prism6 || t == CellType::Prism15 ||
-                           t == CellType::Prism18 ||
+        const bool locks = t == CellType::Tet4 || t == CellType::Prism6 ||
                            ((t == CellType::Hex8 || t == CellType::Hex20 || t == CellType::Hex27) &&
                             dilatationModeCount(t, formulation) == 0);
         const std::string& name = mesh::ReferenceElement::get(t).name();
