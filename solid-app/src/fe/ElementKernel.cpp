@@ -289,7 +289,10 @@ void projectedCellResponse(const CellQuadrature& cq, const Eigen::Matrix3Xd& u,
     fint.setZero(nd);
     if (K)
         K->setZero(nd, nd);
-    Eigen::VectorXd nuSum = Eigen::VectorXd::Zero(np); // TL: coefficients of d2(J_bar)
+    // TL second-variation terms of ln J_bar, collected per point and added after the loop:
+    //   sum_p curvature_p tr(F_p^-1 dH F_p^-1 DH) + A^T diag(rankOne) A + Abar^T diag(rankOneBar) Abar
+    Eigen::VectorXd curvature = Eigen::VectorXd::Zero(np), rankOne = Eigen::VectorXd::Zero(np),
+                    rankOneBar = Eigen::VectorXd::Zero(np);
     Eigen::Matrix<double, 6, Eigen::Dynamic> B(6, nd), Bbar(6, nd);
     Vector6 stress;
     Matrix6 D;
@@ -321,29 +324,28 @@ void projectedCellResponse(const CellQuadrature& cq, const Eigen::Matrix3Xd& u,
         addGeometricStiffness(g, stress, w * beta, *K);
         K->noalias() +=
             w * beta * (0.5 * SC * dg.transpose() * dg + dg.transpose() * s.transpose() + s * dg);
-        // (w beta S:C / 3) [Delta delta J_bar / J_bar - dJ_bar dJ_bar^T / J_bar^2 - Delta delta ln
-        // J]
+        // kappa [Delta delta J_bar / J_bar - dJ_bar dJ_bar^T / J_bar^2 - Delta delta ln J] with
+        // kappa = w beta S:C / 3, Delta delta ln J = -tr(F^-1 dH F^-1 DH) and
+        // Delta delta J_bar_q = sum_p P(q, p) J_p (a_p a_p^T - tr(F_p^-1 dH F_p^-1 DH))
         const double kappa = w * beta * SC / 3.0;
-        K->noalias() -= kappa / (Jbar * Jbar) * Abar.row(q).transpose() * Abar.row(q);
-        for (int a = 0; a < n; ++a) // - Delta delta ln J = + tr(F^-1 dH F^-1 DH)
-            for (int b = 0; b < n; ++b)
-                for (int l = 0; l < 3; ++l)
-                    for (int j = 0; j < 3; ++j)
-                        (*K)(3 * a + l, 3 * b + j) += kappa * gFinv[q](a, j) * gFinv[q](b, l);
-        for (int p = 0; p < np; ++p) // Delta delta J_bar_q = sum_p P(q,p) J_p (a a^T + dd ln J)_p
-            nuSum[p] += kappa / Jbar * k.P(q, p) * k.volume[p];
+        rankOneBar[q] -= kappa / (Jbar * Jbar);
+        curvature[q] += kappa;
+        for (int p = 0; p < np; ++p)
+        {
+            const double c = kappa / Jbar * k.P(q, p) * k.volume[p];
+            rankOne[p] += c;
+            curvature[p] -= c;
+        }
     }
     if (!K || small)
         return;
+    K->noalias() += A.transpose() * rankOne.asDiagonal() * A;
+    K->noalias() += Abar.transpose() * rankOneBar.asDiagonal() * Abar;
     for (int p = 0; p < np; ++p)
-    {
-        K->noalias() += nuSum[p] * A.row(p).transpose() * A.row(p);
         for (int a = 0; a < n; ++a)
-            for (int b = 0; b < n; ++b)
-                for (int l = 0; l < 3; ++l)
-                    for (int j = 0; j < 3; ++j)
-                        (*K)(3 * a + l, 3 * b + j) -= nuSum[p] * gFinv[p](a, j) * gFinv[p](b, l);
-    }
+            for (int b = 0; b < n; ++b) // block (a, b), entry (l, j): gFinv(a, j) gFinv(b, l)
+                K->block<3, 3>(3 * a, 3 * b).noalias() +=
+                    curvature[p] * gFinv[p].row(b).transpose() * gFinv[p].row(a);
 }
 
 } // namespace
