@@ -290,7 +290,8 @@ void projectedCellResponse(const CellQuadrature& cq, const Eigen::Matrix3Xd& u,
     if (K)
         K->setZero(nd, nd);
     // TL second-variation terms of ln J_bar, collected per point and added after the loop:
-    //   sum_p curvature_p tr(F_p^-1 dH F_p^-1 DH) + A^T diag(rankOne) A + Abar^T diag(rankOneBar) Abar
+    //   sum_p curvature_p tr(F_p^-1 dH F_p^-1 DH)
+    //   + A^T diag(rankOne) A + Abar^T diag(rankOneBar) Abar
     Eigen::VectorXd curvature = Eigen::VectorXd::Zero(np), rankOne = Eigen::VectorXd::Zero(np),
                     rankOneBar = Eigen::VectorXd::Zero(np);
     Eigen::Matrix<double, 6, Eigen::Dynamic> B(6, nd), Bbar(6, nd);
