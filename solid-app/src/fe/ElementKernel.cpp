@@ -274,7 +274,8 @@ void projectedCellResponse(const CellQuadrature& cq, const Eigen::Matrix3Xd& u,
     const bool small = kinematics == Kinematics::SmallStrain;
     // a_p: delta(tr eps) (small) or delta(ln J) (TL) = a_p . delta u; rows of A
     Eigen::MatrixXd A(np, nd);
-    std::vector<Eigen::MatrixXd> gFinv(np); // n x 3: row a = (F^-T Grad N_a)^T
+    // n x 3 (fixed 3 columns: the 3 x 3 blocks below need no heap): row a = (F^-T Grad N_a)^T
+    std::vector<Eigen::Matrix<double, Eigen::Dynamic, 3>> gFinv(np);
     for (int q = 0; q < np; ++q)
     {
         gFinv[q] =
@@ -323,8 +324,9 @@ void projectedCellResponse(const CellQuadrature& cq, const Eigen::Matrix3Xd& u,
         const Eigen::VectorXd s = B.transpose() * stress;                // S_bar : delta E
         K->noalias() += w * (Bbar.transpose() * (D * Bbar));
         addGeometricStiffness(g, stress, w * beta, *K);
-        K->noalias() +=
-            w * beta * (0.5 * SC * dg.transpose() * dg + dg.transpose() * s.transpose() + s * dg);
+        K->noalias() += (0.5 * w * beta * SC) * dg.transpose() * dg; // outer products, in place
+        K->noalias() += (w * beta) * dg.transpose() * s.transpose();
+        K->noalias() += (w * beta) * s * dg;
         // kappa [Delta delta J_bar / J_bar - dJ_bar dJ_bar^T / J_bar^2 - Delta delta ln J] with
         // kappa = w beta S:C / 3, Delta delta ln J = -tr(F^-1 dH F^-1 DH) and
         // Delta delta J_bar_q = sum_p P(q, p) J_p (a_p a_p^T - tr(F_p^-1 dH F_p^-1 DH))
