@@ -9,7 +9,7 @@
 //   ProjectedDilatation: the dilatation the material sees is the L2 projection, per cell, onto
 //   a discontinuous space of "dilatation modes" (Hex8: constant, Hex20/Hex27: 1, X, Y, Z):
 //     small strain: eps_bar = eps + (theta_bar - tr eps)/3 I, theta = tr eps (B-bar, Hughes
-//       1980; for a linear volumetric law, as all laws here, Hex27 with P1 modes equals the
+//       1980; with a linear volumetric law (all small-strain laws here) Hex27 with P1 modes is the
 //       mixed Q2-P1disc element with its pressure condensed, and Hex8 equals Q1-P0);
 //     total Lagrangian: F_bar = (J_bar/J)^(1/3) F, J = det F, E_bar = (F_bar^T F_bar - I)/2
 //       (F-bar with a projected J; the internal force is the derivative of the stored energy
