@@ -5,8 +5,8 @@
 //   only partly for nu -> 0.5, -1.4 % on Cook's membrane at 16 x 16; its single-cell spurious
 //   mode does not propagate in meshes of two or more cells). Hex27: 3x3x3 (locks for
 //   nu -> 0.5 unless ElementKernel's projected dilatation is used). Faces: Tri3/Tri6 3 points
-//   (degree 2), Quad4 2x2, Quad8/Quad9 3x3. Prism6: 3-point triangle x 2-point line; Prism15/Prism18: 7-point
-//   (degree 5) triangle x 3-point line.
+//   (degree 2), Quad4 2x2, Quad8/Quad9 3x3. Prism6: 3-point triangle x 2-point line;
+//   Prism15/Prism18: 7-point (degree 5) triangle x 3-point line.
 #pragma once
 #include "mesh/ReferenceElement.hpp"
 
