@@ -16,7 +16,6 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <map>
 
 using namespace fsi;
 
@@ -25,7 +24,6 @@ namespace
 
 enum class Kind
 {
-    Tet4,
     Tet10,
     Hex8,
     Hex20,
@@ -34,7 +32,7 @@ enum class Kind
 
 const char* kindName(Kind k)
 {
-    static const char* names[] = {"Tet4", "Tet10", "Hex8", "Hex20", "Hex27"};
+    static const char* names[] = {"Tet10", "Hex8", "Hex20", "Hex27"};
     return names[static_cast<int>(k)];
 }
 
