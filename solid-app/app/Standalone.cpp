@@ -86,6 +86,7 @@ fe::ProblemDefinition problemFromConfig(const config::SolidConfig& c)
 {
     fe::ProblemDefinition p;
     p.kinematics = c.kinematics;
+    p.formulation = fe::formulationFromName(c.elementType);
     p.density = c.density;
     if (c.loads.hasGravity)
         p.gravity = Eigen::Vector3d(c.loads.gravity[0], c.loads.gravity[1], c.loads.gravity[2]);

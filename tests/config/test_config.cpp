@@ -218,3 +218,18 @@ TEST(ClosestMatch, EditDistance)
     EXPECT_EQ(fsi::config::closestMatch("kinematic", {"kinematics", "mesh"}), "kinematics");
     EXPECT_EQ(fsi::config::closestMatch("zzz", {"kinematics", "mesh"}), "");
 }
+
+TEST(SolidConfig, ElementType)
+{
+    EXPECT_EQ(SolidConfig::load(write(valid)).elementType, "displacement");
+    const auto c =
+        SolidConfig::load(write(std::string(valid) + "  element: {type: projected-dilatation}\n"));
+    EXPECT_EQ(c.elementType, "projected-dilatation");
+    EXPECT_NE(c.echo().find("element: {type: projected-dilatation}"), std::string::npos);
+    EXPECT_NE(errorOf(std::string(valid) + "  element: {type: bbar}\n")
+                  .find("'solid.element.type' is 'bbar'"),
+              std::string::npos);
+    EXPECT_NE(errorOf(std::string(valid) + "  element: {formulation: displacement}\n")
+                  .find("unknown key 'formulation' in 'solid.element'"),
+              std::string::npos);
+}

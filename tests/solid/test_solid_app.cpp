@@ -328,3 +328,45 @@ TEST(SolidApp, AdaptiveScheduleRelaxationMatchesClosedForm)
     }
     EXPECT_NEAR(csv["corner_sigma_xx"][0], exactRelaxation(0.0), 1e-8 * exactRelaxation(0.0));
 }
+
+// solid.element.type reaches the solver: a nearly incompressible Hex27 bar prints one locking
+// warning with the displacement element and none with projected-dilatation, which is softer.
+TEST(SolidApp, ElementTypeAndLockingWarning)
+{
+    fsi::testing::BlockSpec spec;
+    spec.size = {1.0, 0.2, 0.2};
+    spec.cells = {4, 2, 2};
+    fsi::testing::makeBlockMesh((dir() / "hex27.msh").string(), fsi::testing::TestCell::Hex27,
+                                spec);
+    const std::string base = R"(solid:
+  mesh: {file: hex27.msh, volume: solid, clamped: [x0]}
+  material: {type: linear-elastic, E: 1.0e7, nu: 0.4999}
+  kinematics: small-strain
+  element: {type: displacement}
+  loads: {tractions: [{surface: x1, traction: [0, -1.0e3, 0]}]}
+  output: {vtu: false, watch: [{name: tip, point: [1.0, 0.1, 0.1]}]}
+)";
+    auto tipUy = [](const std::string& name) // history.csv: time,tip_ux,tip_uy,tip_uz
+    {
+        std::ifstream csv(dir() / (name + ".out") / "history.csv");
+        std::string header, time, ux, uy;
+        std::getline(csv, header);
+        std::getline(csv, time, ',');
+        std::getline(csv, ux, ',');
+        std::getline(csv, uy, ',');
+        return std::stod(uy);
+    };
+    const Result plain = runApp(base, "hex27-plain.yaml");
+    EXPECT_EQ(plain.status, 0) << plain.stderrText;
+    EXPECT_EQ(plain.stderrText.rfind("warning: ", 0), 0u) << plain.stderrText;
+    EXPECT_NE(plain.stderrText.find("Hex27"), std::string::npos) << plain.stderrText;
+    EXPECT_EQ(plain.stderrText.find('\n'), plain.stderrText.size() - 1) << plain.stderrText;
+    const Result pd =
+        runApp(replaced(base, "type: displacement", "type: projected-dilatation"), "hex27-pd.yaml");
+    EXPECT_EQ(pd.status, 0) << pd.stderrText;
+    EXPECT_EQ(pd.stderrText, "");
+    const double uPlain = tipUy("hex27-plain.yaml"), uPd = tipUy("hex27-pd.yaml");
+    std::printf("Hex27 bar, nu = 0.4999: tip u_y displacement %.6e, projected-dilatation %.6e\n",
+                uPlain, uPd);
+    EXPECT_LT(uPd, uPlain); // both negative: the projected element is softer
+}

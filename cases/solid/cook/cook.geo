@@ -2,9 +2,11 @@
 // Cook's membrane: tapered panel (0,0)-(48,44)-(48,60)-(0,44), one cell thick (t = 1),
 // clamped at x = 0, vertical shear on x = 48; C = (48, 60) is the reported corner.
 // gmsh -3 -order 2 -setnumber n 8 -setnumber hex 1 cook.geo -o cook.msh
-//   n: cells per side; hex 1: Hex20 (else Tet10 from extruded triangles).
+//   n: cells per side; hex 1: hexahedra (else Tet10 from extruded triangles);
+//   hex27 1: Hex27 (Gmsh's plain "-order 2"), else Hex20 (Mesh.SecondOrderIncomplete = 1).
 If (!Exists(n)) n = 4; EndIf
 If (!Exists(hex)) hex = 1; EndIf
+If (!Exists(hex27)) hex27 = 0; EndIf
 t = 1;
 Point(1) = {0, 0, 0};
 Point(2) = {48, 44, 0};
@@ -21,7 +23,7 @@ Transfinite Surface{1};
 If (hex)
   Recombine Surface{1};
   out[] = Extrude {0, 0, t} { Surface{1}; Layers{1}; Recombine; };
-  Mesh.SecondOrderIncomplete = 1;
+  Mesh.SecondOrderIncomplete = !hex27;
 Else
   out[] = Extrude {0, 0, t} { Surface{1}; Layers{1}; };
 EndIf

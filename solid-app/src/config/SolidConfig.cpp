@@ -320,8 +320,8 @@ SolidConfig SolidConfig::load(const std::string& file)
     c.file = file;
     c.hasCoupling = root.has("coupling");
     const Block s = root.block("solid");
-    s.allowOnly(
-        {"mesh", "material", "kinematics", "newton", "linear_solver", "loads", "time", "output"});
+    s.allowOnly({"mesh", "material", "kinematics", "element", "newton", "linear_solver", "loads",
+                 "time", "output"});
     c.mesh = MeshParameters::parse(s.block("mesh"), dir);
     const Block m = s.block("material");
     c.material = parseMaterial(m);
@@ -333,6 +333,11 @@ SolidConfig SolidConfig::load(const std::string& file)
                                          : material::Kinematics::TotalLagrangian;
     if (c.material.type == "neo-hookean" && c.kinematics == material::Kinematics::SmallStrain)
         s.fail("kinematics", "must be total-lagrangian for a neo-hookean material");
+    if (auto e = s.optionalBlock("element"))
+    {
+        e->allowOnly({"type"});
+        c.elementType = e->choice("type", {"displacement", "projected-dilatation"});
+    }
     if (auto n = s.optionalBlock("newton"))
         c.newton = NewtonParameters::parse(*n);
     if (auto l = s.optionalBlock("linear_solver"))
@@ -386,6 +391,7 @@ std::string SolidConfig::echo() const
     o << "  kinematics: "
       << (kinematics == material::Kinematics::SmallStrain ? "small-strain" : "total-lagrangian")
       << "\n";
+    o << "  element: {type: " << elementType << "}\n";
     o << "  newton: {max_iterations: " << newton.maxIterations
       << ", residual_tolerance: " << newton.residualTolerance
       << ", absolute_tolerance: " << newton.absoluteTolerance

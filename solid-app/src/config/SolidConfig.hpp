@@ -124,6 +124,9 @@ struct SolidConfig
     material::MaterialParameters material;
     double density = 0.0; // [kg/m^3]
     material::Kinematics kinematics = material::Kinematics::SmallStrain;
+    // solid.element.type: "displacement" (default) | "projected-dilatation" (B-bar / F-bar
+    // hexahedra that do not lock for nu -> 0.5; fe::formulationFromName()).
+    std::string elementType = "displacement";
     NewtonParameters newton;
     int solverVerbosity = 0;
     LoadParameters loads;

@@ -58,6 +58,23 @@ void faceWeights(const mesh::Mesh& mesh, const mesh::SurfaceGroup& group, std::v
     }
 }
 
+// One line on stderr naming the cell types that lock volumetrically for this law.
+void warnIfLocking(const mesh::Mesh& mesh, const material::Material& law, Formulation formulation)
+{
+    const double nu = effectivePoissonRatio(law);
+    const auto locking = lockingCellTypes(mesh.cells.types, formulation, nu);
+    if (locking.empty())
+        return;
+    std::string names;
+    for (const auto& name : locking)
+        names += (names.empty() ? "" : "/") + name;
+    std::fprintf(stderr,
+                 "warning: %s: %s cells lock volumetrically at nu = %.4g (>= 0.45) with the %s "
+                 "element formulation: displacements come out too small; use Hex8/Hex20/Hex27 with "
+                 "solid.element.type: projected-dilatation (or Tet10)\n",
+                 mesh.source.c_str(), names.c_str(), nu, formulationName(formulation));
+}
+
 } // namespace
 
 StructuralSolver::StructuralSolver(MPI_Comm comm, const mesh::Mesh& mesh,
@@ -137,8 +154,9 @@ StructuralSolver::StructuralSolver(MPI_Comm comm, const mesh::Mesh& mesh,
         const int n = cells.numNodes(c);
         quadOffset_.push_back(quad_.size());
         pointOffset_.push_back(points);
-        const double det = appendCellQuadrature(
-            cells.types[c], cellCoordinates(mesh_.nodes, cells.nodes(c), n), quad_);
+        const double det =
+            appendCellQuadrature(cells.types[c], cellCoordinates(mesh_.nodes, cells.nodes(c), n),
+                                 quad_, dilatationModeCount(cells.types[c], problem_.formulation));
         if (!(det > 0.0))
             throw std::runtime_error(mesh_.source + ": inverted cell " + std::to_string(c) +
                                      " (negative Jacobian at an integration point)");
@@ -149,6 +167,8 @@ StructuralSolver::StructuralSolver(MPI_Comm comm, const mesh::Mesh& mesh,
         dofOffsets.push_back(static_cast<int>(dofs.size()));
     }
     pointOffset_.push_back(points);
+    if (rank_ == 0)
+        warnIfLocking(mesh_, law_, problem_.formulation);
     committedHistory_.assign(static_cast<std::size_t>(points) * law_.historySize(), 0.0);
     for (int p = 0; p < points && law_.historySize(); ++p)
         law_.initialiseHistory(committedHistory_.data() + p * law_.historySize());
@@ -288,7 +308,8 @@ bool StructuralSolver::assemble(const std::vector<double>& u, bool withMatrix,
         const int c = ownCells_[k];
         const int n = cells.numNodes(c);
         const int* conn = cells.nodes(c);
-        CellQuadrature cq{n, pointOffset_[k + 1] - pointOffset_[k], quad_.data() + quadOffset_[k]};
+        CellQuadrature cq{n, pointOffset_[k + 1] - pointOffset_[k], quad_.data() + quadOffset_[k],
+                          dilatationModeCount(cells.types[c], problem_.formulation)};
         Eigen::Matrix3Xd ue(3, n);
         for (int a = 0; a < n; ++a)
             for (int i = 0; i < 3; ++i)
@@ -682,17 +703,18 @@ void StructuralSolver::acceptLevel()
             const int c = ownCells_[k];
             const int n = cells.numNodes(c);
             CellQuadrature cq{n, pointOffset_[k + 1] - pointOffset_[k],
-                              quad_.data() + quadOffset_[k]};
+                              quad_.data() + quadOffset_[k],
+                              dilatationModeCount(cells.types[c], problem_.formulation)};
             Eigen::Matrix3Xd ue(3, n);
             for (int a = 0; a < n; ++a)
                 for (int i = 0; i < 3; ++i)
                     ue(i, a) = u_[3 * cells.nodes(c)[a] + i];
+            const auto points = materialStrains(cq, ue, problem_.kinematics);
             for (int q = 0; q < cq.numPoints; ++q)
             {
-                const Vector6 strain =
-                    strainFromH(displacementGradient(cq, q, ue), problem_.kinematics);
                 const std::size_t p = static_cast<std::size_t>(pointOffset_[k] + q) * hs;
-                law_.updateHistory(strain, step_, committedHistory_.data() + p, next.data() + p);
+                law_.updateHistory(points[q].strain, step_, committedHistory_.data() + p,
+                                   next.data() + p);
             }
         }
         committedHistory_.swap(next);
@@ -824,18 +846,27 @@ void StructuralSolver::accumulateFields(const std::vector<char>& cellFilter,
         if (!cellFilter.empty() && !cellFilter[c])
             continue;
         const int n = cells.numNodes(c);
-        CellQuadrature cq{n, pointOffset_[k + 1] - pointOffset_[k], quad_.data() + quadOffset_[k]};
+        CellQuadrature cq{n, pointOffset_[k + 1] - pointOffset_[k], quad_.data() + quadOffset_[k],
+                          dilatationModeCount(cells.types[c], problem_.formulation)};
         Eigen::Matrix3Xd ue(3, n);
         for (int a = 0; a < n; ++a)
             for (int i = 0; i < 3; ++i)
                 ue(i, a) = u_[3 * cells.nodes(c)[a] + i];
         Vector6 meanStress = Vector6::Zero(), meanStrain = Vector6::Zero();
         double volume = 0.0;
+        std::vector<PointStrain> points;
+        try
+        {
+            points = materialStrains(cq, ue, problem_.kinematics);
+        }
+        catch (const material::InadmissibleDeformation&)
+        {
+            points.assign(cq.numPoints,
+                          {Vector6::Constant(std::nan("")), Eigen::Matrix3d::Identity()});
+        }
         for (int q = 0; q < cq.numPoints; ++q)
         {
-            const Eigen::Matrix3d H = displacementGradient(cq, q, ue);
-            const Eigen::Matrix3d F = Eigen::Matrix3d::Identity() + H;
-            Vector6 strain = strainFromH(H, problem_.kinematics);
+            Vector6 strain = points[q].strain;
             Vector6 stress;
             try
             {
@@ -846,7 +877,8 @@ void StructuralSolver::accumulateFields(const std::vector<char>& cellFilter,
                 stress.setConstant(std::nan(""));
             }
             strain.tail<3>() *= 0.5; // engineering -> tensor shear
-            meanStress += cq.weight(q) * cauchyFromMaterialStress(stress, F, problem_.kinematics);
+            meanStress +=
+                cq.weight(q) * cauchyFromMaterialStress(stress, points[q].F, problem_.kinematics);
             meanStrain += cq.weight(q) * strain;
             volume += cq.weight(q);
         }

@@ -20,6 +20,7 @@
 // history committed by the last acceptLevel(). acceptLevel() requires the last solve to have
 // converged (throws otherwise). Loads given to solve() REPLACE those of the previous call.
 #pragma once
+#include "fe/ElementKernel.hpp"
 #include "linalg/SparseDirectSolver.hpp"
 #include "material/Material.hpp"
 #include "mesh/Mesh.hpp"
@@ -86,6 +87,7 @@ struct SurfaceForce
 struct ProblemDefinition
 {
     material::Kinematics kinematics = material::Kinematics::SmallStrain;
+    Formulation formulation = Formulation::Displacement; // volumetric treatment of hexahedra
     double density = 0.0;                              // [kg/m^3]
     Eigen::Vector3d gravity = Eigen::Vector3d::Zero(); // [m/s^2]
     std::vector<std::string> clamped;                  // all dofs fixed
@@ -136,7 +138,9 @@ class StructuralSolver
 {
 public:
     // mesh and law must outlive the solver (not owned). Throws std::runtime_error for groups
-    // missing in the mesh or an over-/under-constrained setup.
+    // missing in the mesh or an over-/under-constrained setup. Rank 0 prints one warning line
+    // (stderr) if cells of the mesh lock volumetrically for the law's Poisson's ratio
+    // (lockingCellTypes()).
     StructuralSolver(MPI_Comm comm, const mesh::Mesh& mesh, const material::Material& law,
                      ProblemDefinition problem);
     ~StructuralSolver();

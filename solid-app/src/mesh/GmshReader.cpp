@@ -108,7 +108,7 @@ void readCells(int dim, int physical, const std::string& file, const std::string
 
 } // namespace
 
-Mesh readGmsh(const std::string& file, const MeshSelection& selection, bool quiet)
+Mesh readGmsh(const std::string& file, const MeshSelection& selection, bool /*quiet*/)
 {
     if (!std::ifstream(file).good())
         throw std::runtime_error(file + ": cannot open mesh file");
@@ -175,14 +175,6 @@ Mesh readGmsh(const std::string& file, const MeshSelection& selection, bool quie
         mesh.surfaces.emplace(name, std::move(group));
     }
     mesh.checkJacobians();
-    if (!quiet)
-    {
-        const auto counts = mesh.cellTypeCounts();
-        if (counts.count("Tet4") || counts.count("Hex8") || counts.count("Prism6"))
-            std::cerr << "warning: " << file
-                      << ": linear Tet4/Hex8/Prism6 cells lock volumetrically "
-                      << "for nu -> 0.5 (use Tet10 or Hex20)\n";
-    }
     return mesh;
 }
 

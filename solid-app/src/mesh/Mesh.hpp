@@ -62,7 +62,8 @@ struct MeshSelection
 
 // Reads a Gmsh .msh (v2 or v4) file through the Gmsh API. Throws std::runtime_error with a
 // one-line message naming the file and the group for missing groups, unsupported cell types,
-// inverted cells. Prints a warning (to stderr) for Tet4/Hex8 cells (volumetric locking).
+// inverted cells. quiet: no longer used (the volumetric-locking warning, which needs the
+// material and the element formulation, is printed by fe::StructuralSolver).
 Mesh readGmsh(const std::string& file, const MeshSelection& selection, bool quiet = false);
 
 } // namespace fsi::mesh
