@@ -121,6 +121,7 @@ struct RunOptions
     double unstableStep = 0; // > 0: the fluid double returns NaN forces for larger steps
     double interfaceShift = 0; // [m] in x: the fluid interface moved away from the solid's
     double inexactness = 0;    // the fluid double's force error per unit of asked tolerance
+    bool probes = false;       // reaction of the clamped end x0 and stress at the tip in history
 };
 
 CoupledResult runCoupled(const material::MaterialParameters& params, driver::CouplingParameters coupling,
@@ -134,8 +135,15 @@ CoupledResult runCoupled(const material::MaterialParameters& params, driver::Cou
     fluid->inexactness = options.inexactness;
     fluid->shiftInterface(options.interfaceShift, 0, 0);
     const std::string out = options.out.empty() ? sharedFolder(options.comm, "test") : options.out;
+    driver::LevelProbes probes;
+    if (options.probes)
+    {
+        probes.push_back(std::make_unique<driver::ReactionProbe>("x0"));
+        probes.push_back(std::make_unique<driver::NodeStressProbe>(
+            "tip", beamMesh().nearestNode(Eigen::Vector3d(1.0, 0.05, 0.05))));
+    }
     driver::CoupledDriver driver(options.comm, solid, fluid.get(), coupling, out,
-                                 params.relaxationTimes());
+                                 params.relaxationTimes(), std::move(probes));
     driver.setVerbose(getenv("FSI_TEST_VERBOSE") != nullptr);
     driver.setRestart(options.restart);
     CoupledResult r;
@@ -486,4 +494,29 @@ TEST(RecoveryPolicy, RelaxationCureScalesAFreshAccelerator)
     const driver::LevelAttempt solidFailed{driver::Outcome::SolidFailed, "newton", 1};
     EXPECT_TRUE(policy.cure(solidFailed, schedule, accelerator).empty());
     EXPECT_DOUBLE_EQ(policy.relaxationScale(), 0.25);
+}
+
+// The coupled history carries the reaction of the clamped group and the stress at a watch point
+// (LevelProbe): in equilibrium the reaction balances the fluid load, sum = -F (here F is all in
+// y, F0 (1 - kappa mean u_y)).
+TEST(CoupledDriver, HistoryCarriesReactionAndStressProbes)
+{
+    const auto params = elastic(K, G);
+    const double U1 = meanTipResponse(params, F0);
+    const double kappa = 0.5 / U1;
+    RunOptions options;
+    options.probes = true;
+    const auto r = runCoupled(params, couplingWith("aitken", 0.5), F0, kappa, options);
+    ASSERT_EQ(r.summary.history.size(), 1u);
+    const auto& level = r.summary.history[0];
+    ASSERT_EQ(level.probes.size(), 3u + 12u);
+    if (worldRank() == 0)
+    {
+        EXPECT_NEAR(level.probes[0], -level.force.x(), 1e-9 * F0);
+        EXPECT_NEAR(level.probes[1], -level.force.y(), 1e-7 * F0);
+        EXPECT_NEAR(level.probes[2], -level.force.z(), 1e-9 * F0);
+        EXPECT_NEAR(level.force.y(), F0 * (1 - kappa * r.meanUy), 1e-6 * F0);
+    }
+    for (double v : level.probes)
+        EXPECT_TRUE(std::isfinite(v));
 }
