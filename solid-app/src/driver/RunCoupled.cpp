@@ -8,6 +8,7 @@
 #include "driver/CoupledDriver.hpp"
 #include "fsi/comm/Errors.hpp"
 #include "fsi/comm/LaunchOptions.hpp"
+#include "fsi/comm/MpmdWorld.hpp"
 #include "io/AtomicFile.hpp"
 #include "io/VtuWriter.hpp"
 #include "material/Material.hpp"
@@ -47,6 +48,12 @@ void takeLaunchFlags(int& argc, char** argv)
     auto options = comm::parseLaunchOptions(argc, argv);
     if (given)
         flagLaunch = options;
+}
+
+void endMpmdLaunchOnError(const std::exception& error)
+{
+    if (comm::multiProgramLaunch())
+        comm::exitOnError(error, nullptr, comm::ErrorScope::AllRanks);
 }
 
 int runCoupled(const std::string& configFile, const std::string& outputFolder, bool restart)
