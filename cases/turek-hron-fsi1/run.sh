@@ -169,7 +169,8 @@ t1=$(date +%s.%N)
 wall=$(echo "$t0 $t1" | awk '{printf "%.3f", $2 - $1}')
 if [ $rc != 0 ]; then
   echo "error: the coupled run failed (exit $rc); see log.solid, log.fluid, log.mpirun:" >&2
-  grep -h "error" log.solid log.fluid log.mpirun 2>/dev/null | head -5 >&2
+  # (|| true: head may end grep by SIGPIPE, and pipefail + set -e would then exit 141)
+  grep -h "error" log.solid log.fluid log.mpirun 2>/dev/null | head -5 >&2 || true
   exit $rc
 fi
 mkdir -p results

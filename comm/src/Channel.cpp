@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -263,6 +264,14 @@ void Channel::fail()
 Channel Channel::open(const LaunchOptions& options, const Identity& self,
                       const PeerExpectation& expectation)
 {
+    if (!(options.timeoutSeconds > 0.0 && options.timeoutSeconds <= kMaxTimeoutSeconds))
+        throw CommError("fsi::comm: a timeout of " + seconds(options.timeoutSeconds) +
+                            " is outside (0, 1e9] s; give --comm-timeout (or the config's "
+                            "timeout) of at most 1e9 s",
+                        true);
+    // A write to the socket of a dead peer (port mode: TCP between two mpiruns) must fail with
+    // EPIPE and reach our error path, not kill this process silently by SIGPIPE.
+    std::signal(SIGPIPE, SIG_IGN);
     Channel channel;
     channel.options_ = options;
     channel.self_ = self;
@@ -324,6 +333,15 @@ void Channel::connectMpmd()
 
 void Channel::connectPort()
 {
+    // Port mode is for two separate mpiruns. Inside one MPMD mpirun the peer (given --launch
+    // mpmd) would wait in the MPMD split: say so now instead of timing out without a word.
+    if (const LaunchShape shape = launchShape(); shape.programs > 1)
+        throw CommError("fsi::comm: " + self_.program +
+                            " was given --launch port, but its mpirun started " +
+                            std::to_string(shape.programs) +
+                            " programs (an MPMD launch): give both programs --launch mpmd, or "
+                            "start them with two mpiruns (scripts/launch-port)",
+                        true);
     checkMpi(PMPI_Comm_dup(MPI_COMM_WORLD, &localComm_), "MPI_Comm_dup");
     MPI_Comm_set_errhandler(localComm_, MPI_ERRORS_RETURN);
     MPI_Comm_rank(localComm_, &localRank_);

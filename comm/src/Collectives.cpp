@@ -2,7 +2,9 @@
 #include "fsi/comm/Collectives.hpp"
 
 #include "fsi/comm/Errors.hpp"
+#include "fsi/comm/LaunchOptions.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <climits>
 #include <numeric>
@@ -26,8 +28,10 @@ void waitBounded(MPI_Request& request, double timeoutSeconds, const std::string&
                  MPI_Status* status)
 {
     using Clock = std::chrono::steady_clock;
+    // Saturate: a clock count of nanoseconds overflows near 9.2e9 s.
+    const double bounded = std::min(timeoutSeconds, kMaxTimeoutSeconds);
     const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                                             std::chrono::duration<double>(timeoutSeconds));
+                                             std::chrono::duration<double>(bounded));
     // Spin briefly (latency of a coupling exchange), then sleep with a growing pause (<= 2 ms).
     auto pause = std::chrono::microseconds(20);
     for (long polls = 0;; ++polls)

@@ -5,9 +5,11 @@
 #include "fsi/comm/Channel.hpp"
 #include "fsi/comm/MpmdWorld.hpp"
 
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <mpi.h>
+#include <thread>
 
 namespace fsi::comm
 {
@@ -39,7 +41,11 @@ void exitOnError(const std::exception& error, Channel* channel, ErrorScope scope
     const int localRank = commError && commError->everyRank() ? commError->localRank()
                           : channel                           ? channel->localRank()
                                                               : 0;
-    if (!everyRank || localRank == 0)
+    // Before the channel exists the local rank is unknown: the program's first process prints.
+    const LaunchShape shape = launchShape();
+    const bool printer =
+        !everyRank || (channel ? localRank == 0 : shape.worldRank == shape.firstWorldRank);
+    if (printer)
         std::fprintf(stderr, "error: %s\n", error.what());
     std::fflush(stderr);
 
@@ -52,6 +58,16 @@ void exitOnError(const std::exception& error, Channel* channel, ErrorScope scope
     {
         if (channel && channel->healthy() && !channel->peerKnowsWeStop())
             channel->sendAbort(error.what());
+        abortRun(code);
+    }
+    // No coupling yet in a one-mpirun (MPMD) launch: the peer waits in the MPMD split or in
+    // MPI_Finalize, both collective over the whole job, until its timeout. End the job now; the
+    // other ranks give the printing one a moment so that its message is not cut off.
+    // (A failed handshake is known to both sides, which end in order: ProtocolError.)
+    if (!channel && shape.programs > 1 && !dynamic_cast<const ProtocolError*>(&error))
+    {
+        if (!printer)
+            std::this_thread::sleep_for(std::chrono::seconds(1));
         abortRun(code);
     }
     // Every rank of this program is here and the peer is reachable: end in order so that both

@@ -36,6 +36,10 @@ double parseSeconds(const std::string& text)
         throw std::runtime_error("--comm-timeout: '" + text +
                                  "' is not a positive number of seconds (e.g. --comm-timeout 600)");
     }
+    if (value > kMaxTimeoutSeconds)
+        throw std::runtime_error("--comm-timeout: '" + text +
+                                 "' is more than the maximum of 1e9 s (31 years); give at most "
+                                 "--comm-timeout 1e9");
     return value;
 }
 } // namespace

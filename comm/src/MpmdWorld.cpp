@@ -5,8 +5,11 @@
 #include "fsi/comm/Collectives.hpp"
 #include "fsi/comm/Errors.hpp"
 
+#include <algorithm>
+#include <cstdlib>
 #include <memory>
 #include <set>
+#include <sstream>
 
 // Calls on MPI_COMM_WORLD use PMPI_* so that they reach the real world even in an executable
 // whose MPI_* are redirected (fsi_comm_world_redirect).
@@ -33,6 +36,41 @@ void finaliseMpi()
         PMPI_Finalize();
 }
 
+LaunchShape launchShape()
+{
+    LaunchShape shape;
+    int initialised = 0;
+    PMPI_Initialized(&initialised);
+    if (!initialised)
+        return shape;
+    PMPI_Comm_rank(MPI_COMM_WORLD, &shape.worldRank);
+    int* appNumber = nullptr;
+    int flag = 0;
+    PMPI_Comm_get_attr(MPI_COMM_WORLD, MPI_APPNUM, &appNumber, &flag);
+    shape.appNumber = flag && appNumber ? *appNumber : 0;
+    if (const char* count = std::getenv("OMPI_NUM_APP_CTX"))
+        shape.programs = std::max(1, std::atoi(count));
+    if (shape.appNumber > 0)
+        shape.programs = std::max(shape.programs, shape.appNumber + 1);
+    // Programs occupy consecutive world ranks in launch order: sum the earlier ones' sizes.
+    shape.firstWorldRank = shape.appNumber == 0 ? 0 : shape.worldRank;
+    if (const char* sizes = std::getenv("OMPI_APP_CTX_NUM_PROCS"))
+    {
+        std::istringstream in(sizes);
+        int first = 0, size = 0;
+        for (int app = 0; app < shape.appNumber && in >> size; ++app)
+            first += size;
+        if (in)
+            shape.firstWorldRank = first;
+    }
+    return shape;
+}
+
+bool multiProgramLaunch()
+{
+    return launchShape().programs > 1;
+}
+
 const MpmdLayout& mpmdLayout(double timeoutSeconds)
 {
     static std::unique_ptr<MpmdLayout> layout;
@@ -54,13 +92,18 @@ const MpmdLayout& mpmdLayout(double timeoutSeconds)
     std::vector<int> appOfRank(static_cast<std::size_t>(result->worldSize));
     {
         // All processes of the launch must get here; bound the wait for the other program.
+        // Each program's first process prints (world rank 0 alone left the second one silent).
+        const LaunchShape shape = launchShape();
+        std::ostringstream limit;
+        limit << timeoutSeconds;
         detail::Watchdog guard(timeoutSeconds,
-                               result->worldRank == 0
+                               result->worldRank == shape.firstWorldRank
                                    ? "fsi::comm: MPMD start-up (split of MPI_COMM_WORLD) did not "
                                      "complete within " +
-                                         std::to_string(static_cast<long>(timeoutSeconds)) +
+                                         limit.str() +
                                          " s: the other program did not start its coupling "
-                                         "(crashed, or not an fsi program?)"
+                                         "(crashed, not an fsi program, or not started with "
+                                         "--launch mpmd?)"
                                    : std::string(),
                                kExitCommTimeout);
         checkMpi(PMPI_Allgather(&result->appNumber, 1, MPI_INT, appOfRank.data(), 1, MPI_INT,

@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "Watchdog.hpp"
 
+#include "fsi/comm/LaunchOptions.hpp"
+
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <unistd.h>
@@ -10,7 +13,8 @@ namespace fsi::comm::detail
 
 Watchdog::Watchdog(double timeoutSeconds, std::string message, int exitCode, std::string removeFile)
 {
-    const auto limit = std::chrono::duration<double>(timeoutSeconds);
+    // Saturate: wait_for adds the limit to a clock whose nanosecond count overflows near 9.2e9 s.
+    const auto limit = std::chrono::duration<double>(std::min(timeoutSeconds, kMaxTimeoutSeconds));
     thread_ = std::thread(
         [this, limit, exitCode, message = std::move(message), removeFile = std::move(removeFile)]
         {

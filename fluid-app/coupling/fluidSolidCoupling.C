@@ -702,6 +702,11 @@ int Foam::fluidSolidCoupling::runCoupled
 {
     using namespace fsi::fluid;
     transport_ = std::move(transport);
+    const InterfaceGeometry geometry = gatherGeometry();
+    transport_->handshake(geometry, nGlobalPoints_, nGlobalFaces_);
+
+    // The logs only once the solid is connected: a start that fails (no peer, wrong port file,
+    // handshake mismatch) must not truncate accepted.csv, the restart point of an earlier run.
     const fileName logDir = mesh_.time().globalPath()/"postProcessing"/"fsi";
     if (Pstream::master())
     {
@@ -734,8 +739,6 @@ int Foam::fluidSolidCoupling::runCoupled
         Info<< "fsi: restarted from the fields of time " << mesh_.time().timeName() << nl << endl;
     }
 
-    const InterfaceGeometry geometry = gatherGeometry();
-    transport_->handshake(geometry, nGlobalPoints_, nGlobalFaces_);
     Info<< "fsi: coupled mode, transport: " << transport_->describe().c_str() << nl << endl;
     {
         std::vector<double> faceData(6*nGlobalFaces_);

@@ -128,6 +128,63 @@ std::vector<std::string> surfacesOf(const config::SolidConfig& c)
     return s;
 }
 
+void prepareOutputFolder(const std::string& folder, bool restart)
+{
+    std::error_code ec;
+    fs::create_directories(folder, ec);
+    if (ec)
+        throw std::runtime_error(folder + ": cannot create the output folder (" + ec.message() +
+                                 ")");
+    if (restart)
+        return;
+    auto remove = [&](const fs::path& path)
+    {
+        fs::remove_all(path, ec);
+        if (ec)
+            throw std::runtime_error(path.string() +
+                                     ": cannot remove this file of an earlier run (" +
+                                     ec.message() + "); remove it or choose another output folder");
+    };
+    for (const char* name : {"config.echo.yaml", "solid.pvd", "history.csv", "levels.csv",
+                             "summary.csv", "coupling.csv", "interface", "checkpoint"})
+        if (fs::exists(fs::path(folder) / name))
+            remove(fs::path(folder) / name);
+    for (const auto& entry : fs::directory_iterator(folder))
+    {
+        const std::string name = entry.path().filename().string();
+        const bool series = name.size() == 15 && name.rfind("solid_", 0) == 0 &&
+                            name.compare(11, 4, ".vtu") == 0 &&
+                            name.find_first_not_of("0123456789", 6) == 11;
+        if (series)
+            remove(entry.path());
+    }
+}
+
+void checkWatchPoints(const config::SolidConfig& c, const mesh::Mesh& mesh)
+{
+    if (c.output.watch.empty() || mesh.numNodes() == 0)
+        return;
+    const double diagonal =
+        (mesh.nodes.rowwise().maxCoeff() - mesh.nodes.rowwise().minCoeff()).norm();
+    for (std::size_t k = 0; k < c.output.watch.size(); ++k)
+    {
+        const auto& w = c.output.watch[k];
+        const Eigen::Vector3d x(w.point[0], w.point[1], w.point[2]);
+        const double distance = (mesh.nodes.col(mesh.nearestNode(x)) - x).norm();
+        if (distance > 0.1 * diagonal)
+        {
+            char text[512];
+            std::snprintf(text, sizeof text,
+                          "%s: 'solid.output.watch[%zu]' (%s) point [%g, %g, %g] is %g m from "
+                          "the nearest node of %s (mesh size %g m); give a point on the structure "
+                          "in the mesh's units",
+                          fs::path(c.file).filename().c_str(), k, w.name.c_str(), x[0], x[1], x[2],
+                          distance, mesh.source.c_str(), diagonal);
+            throw std::runtime_error(text);
+        }
+    }
+}
+
 int runStandalone(const RunOptions& options)
 {
     const auto wallStart = std::chrono::steady_clock::now();
@@ -137,23 +194,19 @@ int runStandalone(const RunOptions& options)
     const config::SolidConfig cfg = config::SolidConfig::load(options.configFile);
     const std::string out = options.outputFolder.empty() ? cfg.output.folder : options.outputFolder;
     if (rank == 0)
-    {
-        std::error_code ec;
-        fs::create_directories(out, ec);
-        if (ec)
-            throw std::runtime_error(out + ": cannot create the output folder (" + ec.message() +
-                                     ")");
         std::printf("%s", cfg.echo().c_str());
-        io::writeFileAtomically((fs::path(out) / "config.echo.yaml").string(), cfg.echo());
-    }
     const mesh::Mesh mesh =
         mesh::readGmsh(cfg.mesh.file, {cfg.mesh.volume, surfacesOf(cfg)}, rank != 0);
+    checkWatchPoints(cfg, mesh);
     const auto law = material::makeMaterial(cfg.material, cfg.kinematics);
     fe::ProblemDefinition problem = problemFromConfig(cfg);
     problem.printIterations = true;
     fe::StructuralSolver solver(MPI_COMM_WORLD, mesh, *law, problem);
     if (rank == 0)
     {
+        // Only now that the input is known to be good: a failed start leaves the folder as it was.
+        prepareOutputFolder(out, false);
+        io::writeFileAtomically((fs::path(out) / "config.echo.yaml").string(), cfg.echo());
         std::printf("solid-app: %d nodes, %d cells (", mesh.numNodes(), mesh.cells.size());
         for (const auto& [name, count] : mesh.cellTypeCounts())
             std::printf(" %s:%d", name.c_str(), count);

@@ -11,6 +11,10 @@ namespace fsi::config
 {
 struct SolidConfig;
 }
+namespace fsi::mesh
+{
+struct Mesh;
+}
 
 namespace fsi::app
 {
@@ -38,6 +42,18 @@ bool isCoupledConfig(const std::string& configFile);
 fe::ProblemDefinition problemFromConfig(const config::SolidConfig& config);
 // Every surface group the config names (clamped, wetted, loaded): they must exist in the mesh.
 std::vector<std::string> surfacesOf(const config::SolidConfig& config);
+
+// Creates the output folder. A fresh run (restart == false) then removes what an earlier run of
+// solid-app left there: config.echo.yaml, solid.pvd, solid_NNNNN.vtu, history.csv, levels.csv,
+// summary.csv, coupling.csv, interface/ and checkpoint/; other files are kept. Call it only once
+// the start has succeeded (input read; coupled: the fluid connected), so that a failed start
+// leaves the folder, and its restart point, untouched. Throws a one-line error naming the path.
+void prepareOutputFolder(const std::string& folder, bool restart);
+
+// Throws (one line naming the config, the watch entry and the distance) if a watched point of
+// solid.output.watch is farther from every mesh node than 10 % of the mesh's bounding-box
+// diagonal: it would silently snap to a node far away (a typo, or other units).
+void checkWatchPoints(const config::SolidConfig& config, const mesh::Mesh& mesh);
 
 // Runs the standalone problem. Returns the exit code (0 ok, 2 a level did not converge);
 // throws std::runtime_error (one line) on bad input.

@@ -46,6 +46,9 @@ int main(int argc, char** argv)
     }
     catch (const std::exception& e)
     {
+#ifdef FSI_HAVE_DRIVER
+        fsi::driver::endMpmdLaunchOnError(e); // MPMD: the fluid waits for us, end the whole job
+#endif
         if (rank == 0)
             std::fprintf(stderr, "error: %s\n", e.what());
         code = 1;

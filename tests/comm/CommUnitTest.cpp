@@ -161,6 +161,12 @@ TEST(LaunchOptionsParsing, OneLineErrors)
               "--comm-timeout: '-3' is not a positive number of seconds (e.g. --comm-timeout 600)");
     EXPECT_EQ(fails({"--comm-timeout", "5s"}),
               "--comm-timeout: '5s' is not a positive number of seconds (e.g. --comm-timeout 600)");
+    // Issue 15: 1e10 s overflowed the clock and a valid run aborted after 1.7 s.
+    EXPECT_EQ(fails({"--comm-timeout", "1e10"}),
+              "--comm-timeout: '1e10' is more than the maximum of 1e9 s (31 years); give at most "
+              "--comm-timeout 1e9");
+    std::vector<std::string> largest{"--comm-timeout", "1e9"};
+    EXPECT_EQ(parseLaunchOptions(largest).timeoutSeconds, 1e9);
     EXPECT_EQ(fails({"--port-file"}),
               "--port-file: missing value (--launch port|mpmd [--port-file PATH] "
               "[--comm-timeout SECONDS])");

@@ -61,6 +61,8 @@ struct DriverFlags
     bool handshakeOnly = false;                   // --handshake-only: solid sends Finish right away
     std::string expectPeerProgram = "fluid-like"; // --expect-peer-program (solid side)
     int checkWorldSize = 0; // --check-world-size N (fluid with redirect): MPI_COMM_WORLD size
+    int pauseBefore = -1;   // --pause-before N S: sleep S seconds before the N-th operation
+    double pauseSeconds = 0.0;
 };
 
 inline std::vector<std::int64_t> parseList(const std::string& text)
@@ -114,6 +116,11 @@ inline DriverFlags parseDriverFlags(int argc, char** argv)
             f.expectPeerProgram = next();
         else if (a == "--check-world-size")
             f.checkWorldSize = std::stoi(next());
+        else if (a == "--pause-before")
+        {
+            f.pauseBefore = std::stoi(next());
+            f.pauseSeconds = std::stod(next());
+        }
         else
             throw std::runtime_error("unknown argument '" + a + "'");
     }
@@ -135,6 +142,8 @@ public:
     bool before(const char* what)
     {
         ++count_;
+        if (count_ == flags_.pauseBefore)
+            ::usleep(static_cast<useconds_t>(flags_.pauseSeconds * 1e6));
         if (count_ == flags_.dieAfter)
         {
             std::fprintf(stderr, "%s: test: dying before operation %d (%s)\n",

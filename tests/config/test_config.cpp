@@ -213,6 +213,89 @@ TEST(SolidConfig, ShippedExampleIsValid)
     EXPECT_TRUE(c.time.present);
 }
 
+// Issue 15 item 3: silent acceptance.
+TEST(SolidConfig, DuplicateKeysAreErrors)
+{
+    const std::string twice = std::string(valid) + "  kinematics: total-lagrangian\n";
+    const std::string msg = errorOf(twice);
+    EXPECT_NE(msg.find("duplicate key 'kinematics' in 'solid' at line 6"), std::string::npos)
+        << msg;
+    const std::string nested = replaced(valid, "E: 1.0e6,", "E: 1.0e6, E: 2.0e6,");
+    EXPECT_NE(errorOf(nested).find("duplicate key 'E' in 'solid.material'"), std::string::npos);
+}
+
+TEST(SolidConfig, NonFiniteNumbersAreErrors)
+{
+    EXPECT_NE(errorOf(std::string(valid) + "  time: {dt: 1, end: .inf}\n")
+                  .find("'solid.time.end' must be a finite number"),
+              std::string::npos);
+    EXPECT_NE(errorOf(replaced(valid, "E: 1.0e6", "E: .nan"))
+                  .find("'solid.material.E' must be a "
+                        "finite number"),
+              std::string::npos);
+    EXPECT_NE(
+        errorOf(replaced(valid, "[0, -1, 0]", "[0, -.inf, 0]")).find("must be a finite number"),
+        std::string::npos);
+}
+
+TEST(SolidConfig, FluidBlockIsUnknown)
+{
+    EXPECT_NE(errorOf(std::string(valid) + "fluid:\n  inlet: 2\n").find("unknown key 'fluid'"),
+              std::string::npos);
+}
+
+// Issue 15 item 7: a directory as the config named neither the file nor the problem.
+TEST(SolidConfig, DirectoryIsNotAConfig)
+{
+    const std::string dir = std::filesystem::path(write(valid)).parent_path().string();
+    try
+    {
+        SolidConfig::load(dir);
+        ADD_FAILURE() << "no error for a directory";
+    }
+    catch (const std::exception& e)
+    {
+        EXPECT_EQ(std::string(e.what()), dir + ": is a directory, not a config file; give the "
+                                               "path of the YAML config");
+    }
+}
+
+// Issue 15 item 9: input sizes are capped with a clear error.
+TEST(SolidConfig, InputSizesAreCapped)
+{
+    std::string watch = std::string(valid) + "  output:\n    watch:\n";
+    for (int i = 0; i < 1001; ++i)
+        watch += "      - {name: p" + std::to_string(i) + ", point: [0, 0, 0]}\n";
+    EXPECT_NE(errorOf(watch).find("'solid.output.watch' has 1001 points, more than the 1000"),
+              std::string::npos);
+
+    std::string list = std::string(valid) + "  extra: [";
+    for (int i = 0; i < 10001; ++i)
+        list += (i ? ",0" : "0");
+    list += "]\n";
+    EXPECT_NE(errorOf(list).find("'solid.extra' has 10001 entries, more than the 10000"),
+              std::string::npos);
+
+    EXPECT_NE(errorOf(std::string(valid) + "  time: {dt: 1e-6, end: 10}\n")
+                  .find("levels of dt = 1e-06 s, more than the 1000000 allowed"),
+              std::string::npos);
+
+    const std::string big =
+        write(std::string(valid) + "# " + std::string(1u << 20, 'x') + "\n", "big.yaml");
+    try
+    {
+        SolidConfig::load(big);
+        ADD_FAILURE() << "no error for a file over 1 MiB";
+    }
+    catch (const std::exception& e)
+    {
+        EXPECT_NE(std::string(e.what()).find(big + ": "), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("more than the 1048576 a config file may have"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
 TEST(ClosestMatch, EditDistance)
 {
     EXPECT_EQ(fsi::config::closestMatch("kinematic", {"kinematics", "mesh"}), "kinematics");

@@ -5,16 +5,20 @@
 // usage: fake_solid --launch port|mpmd [--port-file F] [--comm-timeout S]
 //                   [--angle DEG] [--origin X,Y] [--steps N] [--iterations K]
 //                   [--out CSV] [--abort-at-step S] [--expect-fluid-ranks R]
+//                   [--die-at-step S [--die-signal N]]
 // Per step s = 1..N and iteration k = 1..K it sends Solve(displacement of a rotation by
 // s/N * DEG), checks the Forces reply (3 nFaces values, 1 integer, 2 scalars), then sends
 // Accept(s, time = 10 s) and finally Finish. --abort-at-step sends Abort instead of the
-// first Solve of that step. Writes one CSV row per Forces reply and prints a summary line.
+// first Solve of that step. --die-at-step sends the first Solve of that step and then raises
+// signal N (default 9, SIGKILL) while the fluid solves. Writes one CSV row per Forces reply
+// and prints a summary line.
 #include "fsi/comm/Channel.hpp"
 #include "fsi/comm/Errors.hpp"
 #include "fsi/comm/LaunchOptions.hpp"
 #include "fsi/comm/MpmdWorld.hpp"
 
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <fstream>
 #include <optional>
@@ -35,6 +39,8 @@ struct Flags
     std::string out;
     int abortAtStep = 0;
     int expectFluidRanks = 0;
+    int dieAtStep = 0;
+    int dieSignal = 9;
 };
 
 Flags parse(int argc, char** argv)
@@ -67,6 +73,10 @@ Flags parse(int argc, char** argv)
             f.abortAtStep = std::stoi(next());
         else if (a == "--expect-fluid-ranks")
             f.expectFluidRanks = std::stoi(next());
+        else if (a == "--die-at-step")
+            f.dieAtStep = std::stoi(next());
+        else if (a == "--die-signal")
+            f.dieSignal = std::stoi(next());
         else
             throw std::runtime_error("fake_solid: unknown argument " + a);
     }
@@ -131,6 +141,13 @@ int main(int argc, char** argv)
                     }
                 }
                 channel->send(MessageKind::Solve, s, k, d);
+                if (s == flags.dieAtStep)
+                {
+                    std::printf("fake-solid: test: raising signal %d after Solve of step %d\n",
+                                flags.dieSignal, s);
+                    std::fflush(stdout);
+                    std::raise(flags.dieSignal);
+                }
                 const Message f = channel->receive(MessageKind::Forces);
                 require(f.timeStep == s && f.iteration == k, "Forces step/iteration");
                 require(f.valueCount == 3 * nFaces, "Forces size");

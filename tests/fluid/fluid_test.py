@@ -381,10 +381,61 @@ def t_peer_abort(a):
           "fluid-app prints the peer's reason")
 
 
+def t_failed_start(a):
+    """Issue 15 item 1: a coupled start that never connects (a mistyped --port-file, no -restart)
+    emptied postProcessing/fsi/accepted.csv, the list fsi-restart-fluid restarts from. The logs
+    of an earlier run must stay byte for byte as they were."""
+    d = prepare(a, "failed-start", single=True, extra_fsi="mode coupled;")
+    logdir = os.path.join(d, "postProcessing", "fsi")
+    os.makedirs(logdir, exist_ok=True)
+    before = {"accepted.csv": "step,time,timeName\n1,10,10\n2,20,20\n",
+              "coupling.csv": "step,iteration,simpleIterations\n1,1,30\n2,1,12\n"}
+    for name, text in before.items():
+        open(os.path.join(logdir, name), "w").write(text)
+    cmd = [a.mpiexec] + MPI_FLAGS + ["-np", "1", a.fluid_app, "-case", d, "--launch", "port",
+                                     "--port-file", os.path.join(d, "typo.port"), "--comm-timeout", "3"]
+    rc, log = run(cmd, os.path.join(d, "log.failed-start"), timeout=120)
+    check(rc != 0 and "did not appear within 3 s" in log,
+          "fluid-app without a solid stops with the port-file timeout (exit %d)" % rc)
+    for name, text in before.items():
+        after = open(os.path.join(logdir, name)).read()
+        check(after == text, "postProcessing/fsi/%s of the earlier run untouched (%d -> %d bytes)"
+              % (name, len(text), len(after)))
+
+
+def t_solid_death(a):
+    """Issue 15 item 2: port mode, the solid dies (SIGKILL, then SIGTERM) while fluid-app solves.
+    fluid-app was killed by SIGPIPE (exit 141) without a word; it must stop with an error that
+    names the solid, within its --comm-timeout."""
+    for sig in (9, 15):
+        fsi = "mode coupled;\ncoupled { maxIterations 60; residualDrop 0; forceTolerance 0; }"
+        d = prepare(a, "solid-death-%d" % sig, single=True, extra_fsi=fsi)
+        pf = os.path.join(d, "fsi.port")
+        lp = [a.launch_port, "--mpiexec", a.mpiexec]
+        for fl in MPI_FLAGS:
+            lp += ["--mpi-flag", fl]
+        cmd = (lp + ["-np", "1", a.fluid_app, "-case", d, "--launch", "port", "--port-file", pf,
+                     "--comm-timeout", "10", ":", "-np", "1", a.fake_solid, "--steps", "2",
+                     "--iterations", "1", "--die-at-step", "1", "--die-signal", str(sig),
+                     "--launch", "port", "--port-file", pf, "--comm-timeout", "10"])
+        t0 = time.time()
+        rc, log = run(cmd, os.path.join(d, "log.coupled"), timeout=300)
+        wall = time.time() - t0
+        m = re.search(r"launch-port: fluid exit (\d+), solid exit (\d+)", log)
+        fluid_rc = int(m.group(1)) if m else -1
+        check("fake-solid: test: raising signal %d" % sig in log, "the solid raised signal %d" % sig)
+        check(fluid_rc not in (-1, 0, 141),
+              "signal %d: fluid-app exit %d (not 141 = SIGPIPE, not 0)" % (sig, fluid_rc))
+        check(re.search(r"error: fsi::comm: .*fake-solid", log) is not None,
+              "signal %d: fluid-app's error names the solid (fake-solid)" % sig)
+        check(wall < 120, "signal %d: both sides stopped after %.1f s (< 120 s)" % (sig, wall))
+
+
 TESTS = {"cfd1-coarse": t_cfd1_coarse, "cfd1-fine": t_cfd1_fine, "force-consistency": t_force_consistency,
          "motion-rotation": t_motion_rotation, "motion-bending": t_motion_bending,
          "quality-guard": t_quality_guard, "bad-case": t_bad_case, "parallel-equivalence": t_parallel_equivalence,
-         "mpmd": t_mpmd, "port": t_port, "peer-abort": t_peer_abort}
+         "mpmd": t_mpmd, "port": t_port, "peer-abort": t_peer_abort,
+         "failed-start": t_failed_start, "solid-death": t_solid_death}
 
 
 def main():

@@ -230,7 +230,15 @@ TEST(MappingParameters, RejectsBadInputWithOneLineMessages)
                           "nearest-neighbour, rbf-thin-plate, rbf-wendland-c2");
     p = params("rbf-wendland-c2");
     p.wendland.supportRadius = 0.0;
-    EXPECT_NE(message(p).find("mapping.support_radius must be > 0 m"), std::string::npos);
+    EXPECT_NE(message(p).find("rbf-wendland-c2.support_radius must be > 0 m"), std::string::npos);
+    // Issue 15: numbers printed as 0.000000; %g keeps small values.
+    p.wendland.supportRadius = -1e-7;
+    EXPECT_NE(message(p).find("(got -1e-07)"), std::string::npos) << message(p);
+    p.wendland.iterativeTolerance = 2.0;
+    p.wendland.supportRadius = 1e-3;
+    EXPECT_NE(message(p).find("rbf-wendland-c2.iterative_tolerance must be in (0, 1) (got 2)"),
+              std::string::npos)
+        << message(p);
     p = params("nearest-neighbour");
     p.overlapTolerance = -1;
     EXPECT_NE(message(p).find("mapping.overlap_tolerance must be > 0"), std::string::npos);
@@ -241,7 +249,7 @@ TEST(MappingSetup, RefusesTooSmallSupportRadiusAndTooLargeDenseSystems)
 {
     const PointCloud s = solidCylinder(16), t = fluidCylinder(16);
     auto p = params("rbf-wendland-c2");
-    p.wendland.supportRadius = 0.01; // well below the node spacing (0.2 m)
+    p.wendland.supportRadius = 1e-5; // well below the node spacing (0.2 m)
     try
     {
         buildMapping(p, s, t);
@@ -249,7 +257,8 @@ TEST(MappingSetup, RefusesTooSmallSupportRadiusAndTooLargeDenseSystems)
     }
     catch (const std::runtime_error& e)
     {
-        EXPECT_NE(std::string(e.what()).find("has no source point within mapping.support_radius"),
+        EXPECT_NE(std::string(e.what()).find("has no source point within mapping.support_radius "
+                                             "1e-05 m"),
                   std::string::npos)
             << e.what();
     }

@@ -153,6 +153,28 @@ TEST(Parameters, ValidationNamesTheKey)
         "modulus_basis");
 }
 
+// Issue 15: gamma = 1e12 (long-term basis) gave an instantaneous nu of -1 and ran.
+TEST(Parameters, AuxeticInstantaneousResponseIsRejected)
+{
+    expectError([](auto& p) { p.pronyCoefficients = {1e12, 0.2, 0.2}; }, "prony.coefficients");
+    MaterialParameters p = hapflex();
+    p.pronyCoefficients = {1e12, 0.2, 0.2};
+    try
+    {
+        p.validate();
+    }
+    catch (const std::runtime_error& e)
+    {
+        EXPECT_NE(std::string(e.what()).find("instantaneous Poisson ratio of -1"),
+                  std::string::npos)
+            << e.what();
+    }
+    // Table 1 itself stays valid: nu0 = 0.49, sum gamma = 0.559 -> instantaneous nu 0.4843.
+    MaterialParameters ok = hapflex();
+    EXPECT_NO_THROW(ok.validate());
+    EXPECT_NEAR(ok.instantaneousPoissonRatio(), 0.4843, 5e-4);
+}
+
 TEST(Parameters, FactoryValidatesFirst)
 {
     MaterialParameters p = hapflex();

@@ -105,6 +105,29 @@ TEST(GmshReader, MissingGroupIsOneLineNamingFileAndGroup)
     EXPECT_NE(missing.find("none.msh"), std::string::npos) << missing;
 }
 
+// Issue 15: an empty .msh said "no volume physical group" instead of naming the problem.
+TEST(GmshReader, EmptyOrNoMeshFileIsNamed)
+{
+    const std::string empty = tempPath("empty.msh");
+    std::ofstream(empty).close();
+    EXPECT_EQ(errorOf(
+                  [&] {
+                      mesh::readGmsh(empty, {"solid", {}}, true);
+                  }),
+              empty + ": the mesh file is empty; write the mesh again (e.g. gmsh -3 part.geo -o "
+                      "part.msh)");
+    const std::string header = tempPath("header.msh");
+    std::ofstream(header) << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n";
+    const std::string msg = errorOf([&] { mesh::readGmsh(header, {"solid", {}}, true); });
+    EXPECT_EQ(msg.rfind(header + ": holds no mesh nodes", 0), 0u) << msg;
+    const std::string dir = std::filesystem::path(header).parent_path().string();
+    EXPECT_EQ(errorOf(
+                  [&] {
+                      mesh::readGmsh(dir, {"solid", {}}, true);
+                  }),
+              dir + ": is a directory, not a mesh file; give the .msh file");
+}
+
 TEST(GmshReader, InvertedCellIsAnError)
 {
     // one Tet4 with a left-handed node order

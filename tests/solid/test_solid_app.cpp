@@ -151,6 +151,44 @@ TEST(SolidApp, BadInputIsOneLineAndNonZeroExit)
                        "nothere.msh", "cannot open");
 }
 
+// Issue 15 item 3: a watch point 198 m outside the mesh snapped to the nearest node silently.
+TEST(SolidApp, WatchPointFarFromTheMeshIsAnError)
+{
+    const Result r =
+        runApp(replaced(good, "point: [1.0, 0.1, 0.1]", "point: [199.0, 0.1, 0.1]"), "watch.yaml");
+    expectOneLineError(r, "watch.yaml",
+                       "'solid.output.watch[0]' (tip) point [199, 0.1, 0.1] is 198 m");
+}
+
+// Issue 15 item 8: a failed start wrote config.echo.yaml beside an earlier run's results, and a
+// shorter re-run left the older solid_NNNNN.vtu files beside the new series.
+TEST(SolidApp, FailedStartKeepsTheFolderAndAFreshRunRemovesTheEarlierRun)
+{
+    const fs::path out = dir() / "rerun.yaml.out";
+    ASSERT_EQ(runApp(good, "rerun.yaml").status, 0);
+    std::ofstream(out / "solid_00007.vtu") << "from a longer earlier run";
+    std::ofstream(out / "notes.txt") << "the user's own file";
+    auto read = [](const fs::path& f)
+    {
+        std::ifstream in(f);
+        return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    };
+    const std::string echo = read(out / "config.echo.yaml");
+    const auto echoTime = fs::last_write_time(out / "config.echo.yaml");
+
+    const Result failed = runApp(replaced(good, "block.msh", "nothere.msh"), "rerun.yaml");
+    EXPECT_NE(failed.status, 0);
+    EXPECT_EQ(read(out / "config.echo.yaml"), echo);
+    EXPECT_EQ(fs::last_write_time(out / "config.echo.yaml"), echoTime);
+    EXPECT_TRUE(fs::exists(out / "solid_00007.vtu"));
+
+    ASSERT_EQ(runApp(replaced(good, "end: 1.0", "end: 0.5"), "rerun.yaml").status, 0);
+    EXPECT_FALSE(fs::exists(out / "solid_00007.vtu")) << "stale VTU of the earlier run kept";
+    EXPECT_FALSE(fs::exists(out / "solid_00002.vtu")) << "stale VTU of the earlier run kept";
+    EXPECT_TRUE(fs::exists(out / "solid_00001.vtu"));
+    EXPECT_TRUE(fs::exists(out / "notes.txt")) << "a file solid-app did not write was removed";
+}
+
 TEST(SolidApp, UsageErrors)
 {
     const int raw = std::system((std::string(SOLID_APP) + " > /dev/null 2>&1").c_str());

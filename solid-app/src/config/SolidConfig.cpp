@@ -194,7 +194,8 @@ std::vector<double> TimeParameters::levels() const
     if (type == "geometric")
     {
         double step = firstStep;
-        while (t.back() < end)
+        // (bounded: parse() rejects schedules longer than kMaxTimeLevels)
+        while (t.back() < end && t.size() <= static_cast<std::size_t>(kMaxTimeLevels))
         {
             t.push_back(nextTime(t.back(), step));
             step = maxStep > 0.0 ? std::min(step * growth, maxStep) : step * growth;
@@ -221,6 +222,10 @@ TimeParameters TimeParameters::parse(const Block& b)
             b.fail("dt", "must be > 0 [s]");
         if (!(p.end >= 0.0))
             b.fail("end", "must be >= 0 [s]");
+        if (p.end / p.dt > static_cast<double>(kMaxTimeLevels))
+            b.fail("end", "= " + formatNumber(p.end) + " s gives " + formatNumber(p.end / p.dt) +
+                              " levels of dt = " + formatNumber(p.dt) + " s, more than the " +
+                              std::to_string(kMaxTimeLevels) + " allowed; raise dt or lower end");
     }
     else if (p.type == "list")
     {
@@ -277,6 +282,11 @@ TimeParameters TimeParameters::parse(const Block& b)
         for (double h : p.hit)
             if (!(h > 0.0 && h <= p.end))
                 b.fail("hit", "times to land on must lie in (0, end] [s]");
+        if (geometric && p.levels().size() > static_cast<std::size_t>(kMaxTimeLevels))
+            b.fail("first_step", "= " + formatNumber(p.firstStep) + " s with growth " +
+                                     formatNumber(p.growth) + " gives more than the " +
+                                     std::to_string(kMaxTimeLevels) +
+                                     " levels allowed up to end; raise first_step or growth");
     }
     if (b.has("load_factor"))
     {
@@ -303,11 +313,18 @@ OutputParameters OutputParameters::parse(const Block& b, const std::string& conf
     if (p.every < 1)
         b.fail("every", "must be >= 1");
     if (b.has("watch"))
-        for (const Block& w : b.blockList("watch"))
+    {
+        const std::vector<Block> watch = b.blockList("watch");
+        if (watch.size() > kMaxWatchPoints)
+            b.fail("watch", "has " + std::to_string(watch.size()) + " points, more than the " +
+                                std::to_string(kMaxWatchPoints) +
+                                " allowed; watch a few points (the VTU output has every node)");
+        for (const Block& w : watch)
         {
             w.allowOnly({"name", "point"});
             p.watch.push_back({w.text("name"), w.vector3("point")});
         }
+    }
     return p;
 }
 
@@ -315,7 +332,7 @@ SolidConfig SolidConfig::load(const std::string& file)
 {
     const Block root = Block::load(file);
     const std::string dir = fs::path(file).parent_path().string();
-    root.allowOnly({"solid", "coupling", "fluid"});
+    root.allowOnly({"solid", "coupling"});
     SolidConfig c;
     c.file = file;
     c.hasCoupling = root.has("coupling");

@@ -62,6 +62,10 @@ struct LoadParameters
     static LoadParameters parse(const Block& b);
 };
 
+// Caps of the input size: levels of a time block, watched points of the output block.
+constexpr long kMaxTimeLevels = 1000000;
+constexpr std::size_t kMaxWatchPoints = 1000;
+
 // Time levels of a standalone run: t_0 = 0 (dt = 0, instantaneous), then by `type`:
 //   uniform    t_n = n dt up to end (the default when type is omitted)
 //   list       the given times (strictly increasing, first 0)

@@ -4,7 +4,10 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <set>
 #include <stdexcept>
 
 namespace fsi::config
@@ -32,7 +35,61 @@ std::size_t editDistance(const std::string& a, const std::string& b)
     return prev[b.size()];
 }
 
+// "line N" of a node, for messages (yaml-cpp counts from 0).
+std::string lineOf(const YAML::Node& n)
+{
+    return "line " + std::to_string(n.Mark().line + 1);
+}
+
+// Duplicate keys (yaml-cpp keeps both, the first wins on lookup) and over-long lists anywhere
+// in the tree are errors. `path` is the dotted key path of `n`.
+void checkTree(const std::string& file, const YAML::Node& n, const std::string& path, int depth)
+{
+    const std::string where = path.empty() ? std::string("top level") : "'" + path + "'";
+    if (depth > kMaxConfigDepth)
+        throw std::runtime_error(baseName(file) + ": " + where + " is nested deeper than " +
+                                 std::to_string(kMaxConfigDepth) +
+                                 " levels; a config has a few levels of blocks");
+    if (n.IsMap())
+    {
+        std::set<std::string> seen;
+        for (const auto& entry : n)
+        {
+            const std::string key = entry.first.IsScalar() ? entry.first.Scalar() : "?";
+            if (!seen.insert(key).second)
+                throw std::runtime_error(baseName(file) + ": duplicate key '" + key + "' in " +
+                                         where + " at " + lineOf(entry.first) +
+                                         "; keep only one of them");
+            checkTree(file, entry.second, path.empty() ? key : path + "." + key, depth + 1);
+        }
+    }
+    else if (n.IsSequence())
+    {
+        if (n.size() > kMaxListEntries)
+            throw std::runtime_error(baseName(file) + ": " + where + " has " +
+                                     std::to_string(n.size()) + " entries, more than the " +
+                                     std::to_string(kMaxListEntries) +
+                                     " a config list may have; shorten the list");
+        for (std::size_t i = 0; i < n.size(); ++i)
+            checkTree(file, n[i], path + "[" + std::to_string(i) + "]", depth + 1);
+    }
+}
+
+double finite(const Block& b, const std::string& key, double value)
+{
+    if (!std::isfinite(value))
+        b.fail(key, "must be a finite number (not .inf or .nan)");
+    return value;
+}
+
 } // namespace
+
+std::string formatNumber(double value)
+{
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", value);
+    return text;
+}
 
 std::string closestMatch(const std::string& word, const std::vector<std::string>& candidates)
 {
@@ -69,6 +126,15 @@ Block::~Block() = default;
 
 Block Block::load(const std::string& file)
 {
+    std::error_code ec;
+    if (std::filesystem::is_directory(file, ec))
+        throw std::runtime_error(file + ": is a directory, not a config file; give the path of "
+                                        "the YAML config");
+    const auto bytes = std::filesystem::file_size(file, ec);
+    if (!ec && bytes > kMaxConfigBytes)
+        throw std::runtime_error(file + ": " + std::to_string(bytes) + " bytes, more than the " +
+                                 std::to_string(kMaxConfigBytes) +
+                                 " a config file may have; is this the right file?");
     YAML::Node root;
     try
     {
@@ -85,6 +151,7 @@ Block Block::load(const std::string& file)
     }
     if (!root.IsMap())
         throw std::runtime_error(baseName(file) + ": the top level must be a mapping of keys");
+    checkTree(file, root, "", 0);
     return Block(file, "", root);
 }
 
@@ -177,7 +244,7 @@ double Block::number(const std::string& key) const
     {
         if (!n.IsScalar())
             throw YAML::Exception(YAML::Mark(), "");
-        return n.as<double>();
+        return finite(*this, key, n.as<double>());
     }
     catch (const YAML::Exception&)
     {
@@ -267,6 +334,8 @@ std::vector<double> Block::numbers(const std::string& key) const
     {
         fail(key, "must be a list of numbers, e.g. [1.0, 2.0]");
     }
+    for (const double v : out)
+        finite(*this, key, v);
     return out;
 }
 
@@ -320,6 +389,9 @@ std::vector<std::vector<double>> Block::table(const std::string& key) const
     {
         fail(key, "must be a list of rows of numbers, e.g. [[0, 0], [1, 1]]");
     }
+    for (const auto& row : out)
+        for (const double v : row)
+            finite(*this, key, v);
     return out;
 }
 

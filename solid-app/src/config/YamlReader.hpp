@@ -3,8 +3,12 @@
 // missing required keys and wrong types are errors of one line naming the file and the
 // key path ("beam.yaml: unknown key 'materail' in 'solid' (did you mean 'material'?)").
 // Other layers' blocks (e.g. the driver's `coupling`) can reuse it.
+// Block::load also rejects what yaml-cpp accepts silently: duplicate keys (anywhere), a
+// directory, files over kMaxConfigBytes, lists over kMaxListEntries entries, nesting deeper
+// than kMaxConfigDepth; number()/numbers()/table() reject .inf and .nan.
 #pragma once
 #include <array>
+#include <cstddef>
 #include <memory>
 #include <optional>
 #include <string>
@@ -17,6 +21,11 @@ class Node;
 
 namespace fsi::config
 {
+
+// Input size caps (a config is a few kB; large data belong in mesh or data files).
+constexpr std::size_t kMaxConfigBytes = 1u << 20; // 1 MiB
+constexpr std::size_t kMaxListEntries = 10000;    // any YAML list
+constexpr int kMaxConfigDepth = 32;               // nesting of blocks and lists
 
 class Block
 {
@@ -68,6 +77,9 @@ private:
     std::string path_;
     std::unique_ptr<YAML::Node> node_;
 };
+
+// A number as printf's %g prints it (keeps small values: 1e-09, not 0.000000); for messages.
+std::string formatNumber(double value);
 
 // Closest candidate by edit distance, "" if none is close.
 std::string closestMatch(const std::string& word, const std::vector<std::string>& candidates);

@@ -8,6 +8,7 @@
 #include "driver/CoupledDriver.hpp"
 #include "fsi/comm/Errors.hpp"
 #include "fsi/comm/LaunchOptions.hpp"
+#include "fsi/comm/MpmdWorld.hpp"
 #include "io/AtomicFile.hpp"
 #include "io/VtuWriter.hpp"
 #include "material/Material.hpp"
@@ -49,6 +50,12 @@ void takeLaunchFlags(int& argc, char** argv)
         flagLaunch = options;
 }
 
+void endMpmdLaunchOnError(const std::exception& error)
+{
+    if (comm::multiProgramLaunch())
+        comm::exitOnError(error, nullptr, comm::ErrorScope::AllRanks);
+}
+
 int runCoupled(const std::string& configFile, const std::string& outputFolder, bool restart)
 {
     std::optional<comm::Channel> channel;
@@ -64,6 +71,7 @@ int runCoupled(const std::string& configFile, const std::string& outputFolder, b
 
         // The mesh first (no MPI): the handshake announces the wetted node count.
         const mesh::Mesh mesh = mesh::readGmsh(cfg.mesh.file, {cfg.mesh.volume, app::surfacesOf(cfg)}, true);
+        app::checkWatchPoints(cfg, mesh);
         const long wettedNodes = static_cast<long>(mesh.surface(cfg.mesh.wetted).nodes.size());
         channel.emplace(comm::Channel::open(launch, {comm::Role::Solid, "solid-app", {wettedNodes}},
                                             {"fluid-app", 0, {}}));
@@ -75,7 +83,8 @@ int runCoupled(const std::string& configFile, const std::string& outputFolder, b
             const std::string out = outputFolder.empty() ? cfg.output.folder : outputFolder;
             if (root)
             {
-                fs::create_directories(out);
+                // After the fluid connected: a failed start leaves an earlier run's folder alone.
+                app::prepareOutputFolder(out, restart);
                 const std::string echo = cfg.echo() + params.echo();
                 std::printf("%s", echo.c_str());
                 io::writeFileAtomically((fs::path(out) / "config.echo.yaml").string(), echo);

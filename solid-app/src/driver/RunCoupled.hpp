@@ -12,6 +12,7 @@
 //                             from OUT/checkpoint/latest (same config, same OUT)
 #pragma once
 
+#include <exception>
 #include <string>
 
 namespace fsi::driver
@@ -20,6 +21,11 @@ namespace fsi::driver
 // Removes --launch, --port-file and --comm-timeout from argc/argv and keeps them: they override
 // the config's coupling.launch block. Call first in main, before other argument parsing.
 void takeLaunchFlags(int& argc, char** argv);
+
+// For main's catch block (errors outside runCoupled: arguments, an unreadable config). In an
+// MPMD launch the fluid waits for this program in the MPMD split: prints the error once and
+// ends the whole job at once (MPI_Abort). Otherwise returns, and main exits as usual.
+void endMpmdLaunchOnError(const std::exception& error);
 
 // Runs the coupled case; collective over this program's ranks. Returns the exit code; errors
 // end the run through fsi::comm (the fluid is told why) with a one-line message.

@@ -7,33 +7,43 @@
 #include "mapping/RbfWendlandC2.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 namespace fsi::mapping
 {
+namespace
+{
+// %g keeps small values readable in messages (1e-05, not 0.000000).
+std::string number(double value)
+{
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", value);
+    return text;
+}
+} // namespace
 
 void WendlandParameters::validate() const
 {
     if (!(supportRadius > 0.0) || !std::isfinite(supportRadius))
-        throw std::runtime_error("mapping.support_radius must be > 0 m for type rbf-wendland-c2 "
-                                 "(got " +
-                                 std::to_string(supportRadius) +
-                                 "); set it to a few solid node spacings");
+        throw std::runtime_error("rbf-wendland-c2.support_radius must be > 0 m for type "
+                                 "rbf-wendland-c2 (got " +
+                                 number(supportRadius) + "); set it to a few solid node spacings");
     if (solver != "auto" && solver != "direct" && solver != "iterative")
-        throw std::runtime_error("mapping.solver '" + solver +
+        throw std::runtime_error("rbf-wendland-c2.solver '" + solver +
                                  "' is unknown; use auto, direct or iterative");
     if (directMaxPoints < 0)
-        throw std::runtime_error("mapping.direct_max_points must be >= 0 (got " +
+        throw std::runtime_error("rbf-wendland-c2.direct_max_points must be >= 0 (got " +
                                  std::to_string(directMaxPoints) + "); e.g. 20000");
     if (!(iterativeTolerance > 0.0 && iterativeTolerance < 1.0))
-        throw std::runtime_error("mapping.iterative_tolerance must be in (0, 1) (got " +
-                                 std::to_string(iterativeTolerance) + "); e.g. 1e-10");
+        throw std::runtime_error("rbf-wendland-c2.iterative_tolerance must be in (0, 1) (got " +
+                                 number(iterativeTolerance) + "); e.g. 1e-10");
 }
 
 void ThinPlateParameters::validate() const
 {
     if (maxSourcePoints < 1)
-        throw std::runtime_error("mapping.max_source_points must be >= 1 for type "
+        throw std::runtime_error("rbf-thin-plate.max_source_points must be >= 1 for type "
                                  "rbf-thin-plate (got " +
                                  std::to_string(maxSourcePoints) + ")");
 }
@@ -51,7 +61,7 @@ void MappingParameters::validate() const
     if (!(overlapTolerance > 0.0) || !std::isfinite(overlapTolerance))
         throw std::runtime_error("mapping.overlap_tolerance must be > 0 (relative to the "
                                  "interface size; e.g. 0.1), got " +
-                                 std::to_string(overlapTolerance));
+                                 number(overlapTolerance));
 }
 
 std::unique_ptr<Mapping> makeMapping(const MappingParameters& params)

@@ -13,9 +13,16 @@
 
 namespace fsi::mapping
 {
-
 namespace
 {
+// %g keeps small values readable in messages (1e-05, not 0.000000).
+std::string number(double value)
+{
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", value);
+    return text;
+}
+
 inline double wendlandC2(double rOverRho)
 {
     const double a = 1.0 - rOverRho;
@@ -89,7 +96,7 @@ void RbfWendlandC2::compute(const PointCloud& source, const PointCloud& target)
                       static_cast<long>(lonely), p(0), p(1), p(2));
         throw std::runtime_error(std::string("mapping rbf-wendland-c2: ") + where +
                                  " has no source point within mapping.support_radius " +
-                                 std::to_string(params_.supportRadius) +
+                                 number(params_.supportRadius) +
                                  " m; raise support_radius to a few solid node spacings");
     }
     evaluation_.resize(t.rows(), s.rows());

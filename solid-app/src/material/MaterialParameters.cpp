@@ -125,6 +125,15 @@ void MaterialParameters::validate() const
                                            " must be < 1 (long-term modulus > 0); check the "
                                            "convention (long-term-gamma?)");
     }
+    // With the volumetric part elastic, a large sum of gamma makes the instantaneous response
+    // auxetic (nu -> -1 as gamma grows): almost always a typo or the wrong convention.
+    const double nuInstantaneous = instantaneousPoissonRatio();
+    if (!(nuInstantaneous >= 0.0))
+        fail("prony.coefficients",
+             "give an instantaneous Poisson ratio of " + number(nuInstantaneous) +
+                 " < 0 (instantaneous shear modulus " + number(instantaneousShearModulus()) +
+                 " Pa against bulk modulus " + number(bulkModulusValue()) +
+                 " Pa); check the values and prony.convention");
 }
 
 std::vector<double> MaterialParameters::longTermGamma() const

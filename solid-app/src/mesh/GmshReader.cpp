@@ -4,6 +4,7 @@
 #include <gmsh.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <stdexcept>
@@ -110,8 +111,14 @@ void readCells(int dim, int physical, const std::string& file, const std::string
 
 Mesh readGmsh(const std::string& file, const MeshSelection& selection, bool /*quiet*/)
 {
+    std::error_code ec;
+    if (std::filesystem::is_directory(file, ec))
+        throw std::runtime_error(file + ": is a directory, not a mesh file; give the .msh file");
     if (!std::ifstream(file).good())
         throw std::runtime_error(file + ": cannot open mesh file");
+    if (std::filesystem::file_size(file, ec) == 0 && !ec)
+        throw std::runtime_error(file + ": the mesh file is empty; write the mesh again (e.g. "
+                                        "gmsh -3 part.geo -o part.msh)");
     GmshSession session;
     try
     {
@@ -124,6 +131,15 @@ Mesh readGmsh(const std::string& file, const MeshSelection& selection, bool /*qu
     catch (...)
     {
         throw std::runtime_error(file + ": Gmsh cannot read the mesh");
+    }
+    {
+        std::vector<std::size_t> tags;
+        std::vector<double> coordinates, parametric;
+        gmsh::model::mesh::getNodes(tags, coordinates, parametric, -1, -1, false, false);
+        if (tags.empty())
+            throw std::runtime_error(file + ": holds no mesh nodes (empty, truncated or not a "
+                                            "Gmsh mesh); write the mesh again (e.g. gmsh -3 "
+                                            "part.geo -o part.msh)");
     }
     Mesh mesh;
     mesh.source = file;

@@ -71,9 +71,13 @@ enum class ErrorScope
 };
 
 // Call from the catch block in main. Prints "error: <what>" to stderr (once per program when
-// the error is on every rank, otherwise from each rank that caught it) and ends the process:
+// the error is on every rank: local rank 0, or the program's first process before the channel
+// exists; otherwise from each rank that caught it) and ends the process:
 //  - TimeoutError, or an error not on every rank: tells the peer (best effort, bounded) and
 //    calls MPI_Abort on the real MPI_COMM_WORLD with the exit code (mpirun stops the job);
+//  - no channel yet (channel == nullptr) in an MPMD launch (multiProgramLaunch()): MPI_Abort
+//    at once, so that the peer, waiting in the MPMD split or in MPI_Finalize, ends within a
+//    second instead of at its timeout (the message is printed first);
 //  - an error on every rank (CommError::everyRank() or scope == AllRanks): sends Abort(what)
 //    to the peer unless the peer aborted first, closes the channel, finalises MPI and exits
 //    with the code, so that both programs print their own message.

@@ -18,6 +18,10 @@ enum class LaunchMode
 
 std::string toString(LaunchMode mode); // "port" | "mpmd"
 
+// Largest accepted timeout [s] (about 31 years): the waits add it to a std::chrono clock
+// whose nanosecond count overflows near 9.2e9 s.
+constexpr double kMaxTimeoutSeconds = 1.0e9;
+
 struct LaunchOptions
 {
     LaunchMode mode = LaunchMode::Mpmd;
@@ -25,13 +29,14 @@ struct LaunchOptions
     // Relative paths are relative to the working directory (usually the case folder).
     std::string portFile = "fsi-comm.port";
     // Bound [s] of every blocking wait: peer messages, port file, connect/accept, MPMD split.
+    // In (0, kMaxTimeoutSeconds]; Channel::open rejects other values.
     double timeoutSeconds = 600.0;
 };
 
 // Flags (both "--flag value" and "--flag=value"):
 //   --launch port|mpmd     (default mpmd)
 //   --port-file PATH       (default fsi-comm.port; port mode only)
-//   --comm-timeout SECONDS (default 600; > 0)
+//   --comm-timeout SECONDS (default 600; > 0 and <= kMaxTimeoutSeconds = 1e9)
 // Recognised flags are removed from args; other arguments are left in order.
 // Throws std::runtime_error with a one-line message naming the flag and the fix.
 LaunchOptions parseLaunchOptions(std::vector<std::string>& args);

@@ -36,6 +36,21 @@ struct MpmdLayout
     MPI_Comm programComm = MPI_COMM_NULL; // this program's ranks; owned by the library
 };
 
+// What the launcher tells this process about the launch, without any communication (MPI must
+// be initialised): MPI_APPNUM, and Open MPI's OMPI_NUM_APP_CTX / OMPI_APP_CTX_NUM_PROCS.
+struct LaunchShape
+{
+    int programs = 1;       // programs started by this mpirun (1 if the launcher does not say)
+    int appNumber = 0;      // MPI_APPNUM of this process
+    int worldRank = 0;      // rank in the real MPI_COMM_WORLD
+    int firstWorldRank = 0; // real world rank of this program's first process
+};
+LaunchShape launchShape();
+// True if this process shares its mpirun (its MPI_COMM_WORLD) with another program: an MPMD
+// launch. Then an error before the coupling exists must end the whole job (MPI_Abort), since
+// the peer waits in the MPMD split or in MPI_Finalize, both collective over the whole job.
+bool multiProgramLaunch();
+
 // Collective over the REAL MPI_COMM_WORLD on the first call: every process of the launch must
 // call it exactly once first (Channel::open does so in MPMD mode; the fluid through
 // initialiseMpmdWorld). Bounded by a watchdog (timeoutSeconds). Throws CommError if the
