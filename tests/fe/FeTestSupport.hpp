@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 #include <unistd.h>
 
 namespace fsi::testing
@@ -27,6 +28,22 @@ inline material::MaterialParameters elastic(double E, double nu)
     p.type = "linear-elastic";
     p.youngsModulus = E;
     p.poissonRatio = nu;
+    return p;
+}
+
+// Prony solid with bulk modulus K and long-term shear modulus G [Pa], gamma_i relative to G
+// (the paper's convention), tau_i [s].
+inline material::MaterialParameters viscoelasticKG(double K, double G, std::vector<double> gammas,
+                                                   std::vector<double> taus)
+{
+    material::MaterialParameters p;
+    p.type = "viscoelastic";
+    p.bulkModulus = K;
+    p.shearModulus = G;
+    p.modulusBasis = "long-term";
+    p.pronyConvention = "long-term-gamma";
+    p.pronyCoefficients = std::move(gammas);
+    p.pronyTimes = std::move(taus);
     return p;
 }
 

@@ -4,7 +4,6 @@
 // factorization and gives the same displacement as a fresh solve with those loads.
 #include "FeTestSupport.hpp"
 #include "MpiEnvironment.hpp"
-#include "material/MaterialParameters.hpp"
 
 #include <gtest/gtest.h>
 
@@ -27,16 +26,7 @@ mesh::Mesh beam()
 
 material::MaterialParameters viscoelastic()
 {
-    material::MaterialParameters p;
-    p.type = "viscoelastic";
-    p.bulkModulus = 5e7;
-    p.shearModulus = 1e7;
-    p.modulusBasis = "long-term";
-    p.pronyConvention = "long-term-gamma";
-    p.pronyCoefficients = {0.5};
-    p.pronyTimes = {2.0};
-    p.validate();
-    return p;
+    return fsi::testing::viscoelasticKG(5e7, 1e7, {0.5}, {2.0});
 }
 
 fe::InterfaceLoads tipLoad(std::size_t wetted, double fy, double fz)

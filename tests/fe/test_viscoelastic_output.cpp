@@ -34,15 +34,8 @@ Uniaxial uniaxialRelaxation(double eps0, material::Kinematics kinematics)
     const auto file = fsi::testing::makeBlockMesh(fsi::testing::tempFile("relax.msh"),
                                                   fsi::testing::TestCell::Tet10, spec);
     Uniaxial u{mesh::readGmsh(file, {"solid", {"x0", "y0", "z0", "x1"}}, true), nullptr, {}};
-    material::MaterialParameters mp;
-    mp.type = "viscoelastic";
-    mp.bulkModulus = 5e6;
-    mp.shearModulus = 1e6;
-    mp.modulusBasis = "long-term";
-    mp.pronyConvention = "long-term-gamma";
-    mp.pronyCoefficients = {0.5, 0.3};
-    mp.pronyTimes = {0.1, 10.0};
-    u.law = material::makeMaterial(mp, kinematics);
+    u.law = material::makeMaterial(fsi::testing::viscoelasticKG(5e6, 1e6, {0.5, 0.3}, {0.1, 10.0}),
+                                   kinematics);
     u.problem.kinematics = kinematics;
     for (int c = 0; c < 3; ++c)
     {
