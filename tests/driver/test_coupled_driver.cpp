@@ -327,10 +327,16 @@ TEST(CoupledDriver, RestartReproducesTheUninterruptedRun)
     first.out = sharedFolder(MPI_COMM_WORLD, "restart");
     auto shortened = coupling;
     shortened.time.times = {0.0, 0.1, 0.4};
+    // A checkpoint folder of an earlier, longer run (issue 15): it must not count as the
+    // newest and make the run prune its own checkpoints.
+    if (worldRank() == 0)
+        std::filesystem::create_directories(first.out + "/checkpoint/level_000009");
+    MPI_Barrier(MPI_COMM_WORLD);
     runCoupled(visco, shortened, F0, kappa, first);
     if (worldRank() == 0)
     {
-        // keep: 2 -> the folders of levels 1 and 2; `latest` names level 2.
+        // keep: 2 -> the folders of levels 1 and 2 (the stale level 9 removed); `latest` names
+        // level 2.
         std::vector<std::string> kept;
         for (const auto& e : std::filesystem::directory_iterator(first.out + "/checkpoint"))
             if (e.is_directory())

@@ -119,11 +119,21 @@ void CheckpointStore::write(const DriverState& d, const fe::CommittedState& soli
         latest.precision(17);
         latest << "level " << d.level << "\ntime " << d.time << "\nfolder " << levelFolderName(d.level) << "\n";
         io::writeFileAtomically((fs::path(folder_) / "latest").string(), latest.str());
-        // Prune: keep the newest `keep` level folders.
+        // Prune. Folders of levels after this one are stale (an earlier, longer run in the same
+        // folder, or the levels a restart went back over): remove them, else they would count
+        // as the newest and this run's own checkpoints would be pruned. Of the others keep the
+        // newest `keep`.
         std::vector<fs::path> levels;
         for (const auto& entry : fs::directory_iterator(folder_))
-            if (entry.is_directory() && entry.path().filename().string().rfind("level_", 0) == 0)
+        {
+            const std::string name = entry.path().filename().string();
+            if (!entry.is_directory() || name.rfind("level_", 0) != 0)
+                continue;
+            if (name > levelFolderName(d.level))
+                fs::remove_all(entry.path());
+            else
                 levels.push_back(entry.path());
+        }
         std::sort(levels.begin(), levels.end());
         for (std::size_t i = 0; i + keep_ < levels.size(); ++i)
             if (levels[i] != dir)
