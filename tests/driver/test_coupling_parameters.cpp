@@ -109,3 +109,22 @@ TEST(CouplingParameters, BadInputNamesTheKey)
               std::string::npos);
     EXPECT_NE(errorOf(minimal + "  recovery: {retries: 2}\n").find("unknown key 'retries'"), std::string::npos);
 }
+
+// Issue 15: a bad RBF coefficient is named under its own block with its value in %g, and the
+// launch timeout is capped (1e10 s overflowed the comm layer's clock).
+TEST(CouplingParameters, StrategyErrorsNameTheirBlockAndKeepSmallValues)
+{
+    const std::string badRadius = "  convergence: {absolute_tolerance: 1.0e-7}\n"
+                                  "  acceleration: {type: aitken, aitken: {initial_relaxation: 0.5}}\n"
+                                  "  mapping: {type: rbf-wendland-c2, rbf-wendland-c2: {support_radius: -1.0e-7}}\n";
+    const std::string what = errorOf(badRadius);
+    EXPECT_NE(what.find("mapping.rbf-wendland-c2"), std::string::npos) << what;
+    EXPECT_EQ(what.find("mapping.type"), std::string::npos) << what;
+    const std::string tinyOmega = "  convergence: {absolute_tolerance: 1.0e-7}\n"
+                                  "  acceleration: {type: aitken, aitken: {initial_relaxation: -1.0e-7}}\n"
+                                  "  mapping: {type: nearest-neighbour}\n";
+    EXPECT_NE(errorOf(tinyOmega).find("got -1e-07"), std::string::npos) << errorOf(tinyOmega);
+    EXPECT_NE(errorOf(minimal + "  launch: {timeout: 1.0e10}\n").find("coupling.launch.timeout"),
+              std::string::npos);
+    EXPECT_NO_THROW(parseText(minimal + "  launch: {timeout: 1.0e9}\n"));
+}

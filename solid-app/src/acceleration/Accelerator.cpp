@@ -6,6 +6,7 @@
 #include "acceleration/IqnIls.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 namespace fsi::acceleration
@@ -15,7 +16,11 @@ namespace
 {
 std::string str(double x)
 {
-    return std::isnan(x) ? std::string("unset") : std::to_string(x);
+    if (std::isnan(x))
+        return "unset";
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", x); // keeps small values (not 0.000000)
+    return text;
 }
 
 void checkInitialRelaxation(double omega, const char* key)

@@ -9,6 +9,17 @@
 namespace fsi::acceleration
 {
 
+namespace
+{
+// %g: keeps small values (1e-07, not 0.000000) in messages
+std::string g(double x)
+{
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", x);
+    return text;
+}
+} // namespace
+
 Aitken::Aitken(const AitkenParameters& params)
     : params_(params), carryOver_(params.initial == "carry-over")
 {
@@ -60,10 +71,10 @@ Eigen::VectorXd Aitken::update(const Eigen::VectorXd& previousIterate,
             // The carried factor is kept in [min_relaxation, max_relaxation] (positive).
             omega_ = std::min(std::max(levelOmega_, params_.minRelaxation), params_.maxRelaxation);
             if (omega_ != levelOmega_)
-                note_ = "aitken: carried-over omega " + std::to_string(levelOmega_) +
-                        " clamped to " + std::to_string(omega_) + " (min_relaxation " +
-                        std::to_string(params_.minRelaxation) + ", max_relaxation " +
-                        std::to_string(params_.maxRelaxation) + ")";
+                note_ = "aitken: carried-over omega " + g(levelOmega_) +
+                        " clamped to " + g(omega_) + " (min_relaxation " +
+                        g(params_.minRelaxation) + ", max_relaxation " +
+                        g(params_.maxRelaxation) + ")";
         }
         else
             omega_ = params_.initialRelaxation;
@@ -75,7 +86,7 @@ Eigen::VectorXd Aitken::update(const Eigen::VectorXd& previousIterate,
         if (denominator > 0.0 && std::isfinite(denominator))
             omega_ = clamp(-omega_ * previousResidual_.dot(change) / denominator, "new");
         else
-            note_ = "aitken: residual unchanged, omega kept at " + std::to_string(omega_);
+            note_ = "aitken: residual unchanged, omega kept at " + g(omega_);
     }
     ++iteration_;
     previousResidual_ = std::move(residual);

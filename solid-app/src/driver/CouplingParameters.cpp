@@ -97,7 +97,9 @@ mapping::MappingParameters parseMapping(const config::Block& b)
         c.allowOnly({"max_source_points"});
         p.thinPlate.maxSourcePoints = c.integer("max_source_points");
     }
-    validateIn(p, b, "type");
+    // a coefficient error is named under the strategy's own block, e.g.
+    // coupling.mapping.rbf-wendland-c2 (the block holds the offending key)
+    validateIn(p, b, p.type == "nearest-neighbour" || !b.has(p.type) ? std::string("type") : p.type);
     return p;
 }
 
@@ -163,8 +165,8 @@ CouplingParameters CouplingParameters::parse(const config::Block& b)
         p.launch.mode = l->choice("mode", {"mpmd", "port"}, p.launch.mode);
         p.launch.portFile = l->text("port_file", p.launch.portFile);
         p.launch.timeout = l->number("timeout", p.launch.timeout);
-        if (!(p.launch.timeout > 0))
-            l->fail("timeout", "must be > 0 s");
+        if (!(p.launch.timeout > 0 && p.launch.timeout <= 1e9))
+            l->fail("timeout", "must be in (0, 1e9] s (the longest wait for the peer, e.g. 600)");
     }
     p.maxIterations = b.integer("max_iterations", p.maxIterations);
     if (p.maxIterations < 1)

@@ -16,6 +16,12 @@ namespace
     throw std::runtime_error("coupling.time." + key + ": " + what);
 }
 constexpr double timeEps = 1e-12;
+std::string formatG(double x)
+{
+    std::ostringstream s;
+    s << x;
+    return s.str();
+}
 } // namespace
 
 void TimeScheduleParameters::validate() const
@@ -213,7 +219,7 @@ std::string TimeSchedule::describe() const
           << (params_.errorTolerance > 0 ? "path error tolerance " : "target change ")
           << (params_.errorTolerance > 0 ? params_.errorTolerance : params_.targetChange)
           << ", dt in [" << params_.minStep << ", "
-          << (params_.maxStep > 0 ? std::to_string(params_.maxStep) : std::string("inf")) << "] s";
+          << (params_.maxStep > 0 ? formatG(params_.maxStep) : std::string("inf")) << "] s";
     else
         s << ", " << planned_.size() << " levels from 0 to " << planned_.back() << " s";
     return s.str();
