@@ -133,7 +133,8 @@ int main(int argc, char* argv[])
                 if (ctrl.estimateError && iter > 1)
                 {
                     // What is left of a linearly converging iteration: change rho/(1 - rho),
-                    // rho from the last three changes (0.9 until three are known), <= 0.98.
+                    // rho over the last three ratios of changes (0.9 until four changes are
+                    // known), at most 0.98.
                     const label m = forceChanges.size();
                     scalar rho = 0.9;
                     if (m >= 4 && forceChanges[m - 4] > VSMALL)
