@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -144,7 +145,8 @@ CoupledResult runCoupled(const material::MaterialParameters& params, driver::Cou
     }
     driver::CoupledDriver driver(options.comm, solid, fluid.get(), coupling, out,
                                  params.relaxationTimes(), std::move(probes));
-    driver.setVerbose(getenv("FSI_TEST_VERBOSE") != nullptr);
+    // FSI_TEST_VERBOSE=1 prints the coupling iterations (debugging a failing test)
+    driver.setVerbose(std::getenv("FSI_TEST_VERBOSE") != nullptr);
     driver.setRestart(options.restart);
     CoupledResult r;
     try
