@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Material-point checks of the viscoelastic law against /work/shared/reference/prony.md:
+// Material-point checks of the viscoelastic law against ../shared/reference/prony.md:
 // K = 10 MPa, G0 = 1 MPa, Abaqus g = (0.3, 0.2), tau = (0.1, 10) s.
 #include "MaterialPoint.hpp"
 #include "material/MaterialParameters.hpp"

@@ -4,6 +4,7 @@
 #include "acceleration/Aitken.hpp"
 #include "acceleration/ConstantRelaxation.hpp"
 #include "acceleration/IqnIls.hpp"
+#include "acceleration/NumberText.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -16,11 +17,7 @@ namespace
 {
 std::string str(double x)
 {
-    if (std::isnan(x))
-        return "unset";
-    char text[32];
-    std::snprintf(text, sizeof text, "%g", x); // keeps small values (not 0.000000)
-    return text;
+    return std::isnan(x) ? std::string("unset") : numberText(x);
 }
 
 void checkInitialRelaxation(double omega, const char* key)

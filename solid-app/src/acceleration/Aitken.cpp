@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "acceleration/Aitken.hpp"
 
+#include "acceleration/NumberText.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -8,17 +10,6 @@
 
 namespace fsi::acceleration
 {
-
-namespace
-{
-// %g: keeps small values (1e-07, not 0.000000) in messages
-std::string g(double x)
-{
-    char text[32];
-    std::snprintf(text, sizeof text, "%g", x);
-    return text;
-}
-} // namespace
 
 Aitken::Aitken(const AitkenParameters& params)
     : params_(params), carryOver_(params.initial == "carry-over")
@@ -71,10 +62,10 @@ Eigen::VectorXd Aitken::update(const Eigen::VectorXd& previousIterate,
             // The carried factor is kept in [min_relaxation, max_relaxation] (positive).
             omega_ = std::min(std::max(levelOmega_, params_.minRelaxation), params_.maxRelaxation);
             if (omega_ != levelOmega_)
-                note_ = "aitken: carried-over omega " + g(levelOmega_) +
-                        " clamped to " + g(omega_) + " (min_relaxation " +
-                        g(params_.minRelaxation) + ", max_relaxation " +
-                        g(params_.maxRelaxation) + ")";
+                note_ = "aitken: carried-over omega " + numberText(levelOmega_) +
+                        " clamped to " + numberText(omega_) + " (min_relaxation " +
+                        numberText(params_.minRelaxation) + ", max_relaxation " +
+                        numberText(params_.maxRelaxation) + ")";
         }
         else
             omega_ = params_.initialRelaxation;
@@ -86,7 +77,7 @@ Eigen::VectorXd Aitken::update(const Eigen::VectorXd& previousIterate,
         if (denominator > 0.0 && std::isfinite(denominator))
             omega_ = clamp(-omega_ * previousResidual_.dot(change) / denominator, "new");
         else
-            note_ = "aitken: residual unchanged, omega kept at " + g(omega_);
+            note_ = "aitken: residual unchanged, omega kept at " + numberText(omega_);
     }
     ++iteration_;
     previousResidual_ = std::move(residual);

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "acceleration/Convergence.hpp"
 
+#include "acceleration/NumberText.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -9,24 +11,13 @@
 namespace fsi::acceleration
 {
 
-namespace
-{
-// %g: keeps small values (1e-07, not 0.000000) in messages
-std::string g(double x)
-{
-    char text[32];
-    std::snprintf(text, sizeof text, "%g", x);
-    return text;
-}
-} // namespace
-
 void ConvergenceParameters::validate() const
 {
     if (!(absoluteTolerance >= 0.0) || !(relativeTolerance >= 0.0))
         throw std::runtime_error(
             "coupling convergence tolerances must be >= 0 (absolute_tolerance " +
-            g(absoluteTolerance) + ", relative_tolerance " +
-            g(relativeTolerance) + ")");
+            numberText(absoluteTolerance) + ", relative_tolerance " +
+            numberText(relativeTolerance) + ")");
     if (!(absoluteTolerance > 0.0) && !(relativeTolerance > 0.0))
         throw std::runtime_error("coupling convergence needs absolute_tolerance (|r|/sqrt(n) in m, "
                                  "e.g. 1e-8) or relative_tolerance (e.g. 1e-5) > 0");

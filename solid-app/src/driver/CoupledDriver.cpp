@@ -93,6 +93,7 @@ struct CoupledDriver::Impl
     double dtLast = 0.0;
     double lastFirstResidual = 0.0; // of the last accepted level [m] (0: none yet)
     mapping::Values nodalDisplacement, pointDisplacement, nodalForceRows; // rank 0 buffers
+    std::vector<double> wettedCoordinates; // reference positions of the wetted nodes (set-up)
     std::vector<double> acceptedTimes;
     RunSummary summary;
     Clock::time_point runStart = Clock::now();
@@ -193,7 +194,8 @@ std::optional<CheckpointStore::Loaded> CoupledDriver::Impl::loadCheckpoint(const
 void CoupledDriver::Impl::setUp(int restartLevel)
 {
     accelerator = recovery.makeAccelerator();
-    const auto solidNodes = toCloud(solid.wettedNodeCoordinates());
+    wettedCoordinates = solid.wettedNodeCoordinates();
+    const auto solidNodes = toCloud(wettedCoordinates);
     if (solidNodes.rows() == 0)
         fail("solid mesh: the wetted surface has no nodes (check mesh.wetted)");
     std::string error;
@@ -482,7 +484,7 @@ void CoupledDriver::Impl::acceptLevel(LevelRecord& record, double levelSeconds, 
             probeText += "; " + text;
     }
     record.wallSeconds = wallOffset + secondsSince(runStart);
-    log.interfaceState(record, solid.wettedNodeCoordinates(), solverOutput, nodalForce);
+    log.interfaceState(record, wettedCoordinates, solverOutput, nodalForce);
     acceptedTimes.push_back(record.time);
     if (callback)
         callback(record);

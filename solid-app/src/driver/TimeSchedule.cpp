@@ -115,13 +115,6 @@ int TimeSchedule::plannedLevels() const
     return params_.type == "adaptive" ? -1 : static_cast<int>(planned_.size());
 }
 
-double TimeSchedule::progress() const
-{
-    if (params_.type != "adaptive")
-        return planned_.size() <= 1 ? 1.0 : static_cast<double>(level_) / (planned_.size() - 1);
-    return std::log1p(time_ / params_.firstStep) / std::log1p(params_.end / params_.firstStep);
-}
-
 double TimeSchedule::endTime() const
 {
     return params_.type == "adaptive" ? params_.end : planned_.back();

@@ -67,10 +67,6 @@ public:
     double lastStep() const { return lastStep_; }
     // Number of levels when known in advance (steady, list, geometric); -1 for adaptive.
     int plannedLevels() const;
-    // Fraction of the run done, in [0, 1], for progress/ETA lines: levels done / planned, or for
-    // adaptive schedules log(1 + t/first_step) / log(1 + end/first_step) (steps grow roughly
-    // geometrically, so the cost is spread evenly on a log-time scale).
-    double progress() const;
     std::string describe() const;
 
     // Restart: continue after the accepted `level` at `time` whose step was `lastStep`. Planned

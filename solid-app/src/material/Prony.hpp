@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Prony-series helpers (conventions in /work/shared/reference/prony.md).
+// Prony-series helpers (conventions in ../shared/reference/prony.md, beside the repository).
 #pragma once
 
 #include <vector>
