@@ -538,10 +538,20 @@ Foam::fluidSolidCoupling::SolveControls Foam::fluidSolidCoupling::controls
     c.maxIterations = d.getOrDefault<label>("maxIterations", 1000);
     c.residualDrop = d.getOrDefault<scalar>("residualDrop", 0);
     c.forceTolerance = d.getOrDefault<scalar>("forceTolerance", 0);
-    if (c.maxIterations < 1)
+    c.minIterations = d.getOrDefault<label>("minIterations", 1);
+    c.residualRequired = d.getOrDefault<bool>("residualRequired", true);
+    c.estimateError = d.getOrDefault<bool>("estimateForceError", false);
+    if (c.maxIterations < 1 || c.minIterations < 1 || c.minIterations > c.maxIterations)
     {
         FatalIOErrorInFunction(dict_)
-            << "system/fsiDict: " << subDictName << ".maxIterations must be >= 1"
+            << "system/fsiDict: " << subDictName << ".maxIterations and minIterations must be"
+            << " >= 1 with minIterations <= maxIterations" << exit(FatalIOError);
+    }
+    if (!c.residualRequired && c.forceTolerance <= 0)
+    {
+        FatalIOErrorInFunction(dict_)
+            << "system/fsiDict: " << subDictName << ".residualRequired false needs a"
+            << " forceTolerance > 0 (otherwise nothing stops the solve before maxIterations)"
             << exit(FatalIOError);
     }
     return c;

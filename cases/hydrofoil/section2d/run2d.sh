@@ -1,0 +1,147 @@
+#!/bin/bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# 2-D section mode of the hydrofoil case: the foil section in the tunnel's x-y plane, one cell
+# thick, Re_c = 9.96e4, slip (symmetry) tunnel walls at y = +-0.254 m. Meshes, solves the rigid
+# steady flow with fluid-app -rigid and prints C_L, C_D, C_M (quarter chord, nose-up positive).
+#
+#   cases/hydrofoil/section2d/run2d.sh --out DIR [--level K] [--flow laminar|transition|turbulent]
+#       [--scheme upwind|linearUpwind] [--tolerance 1e-6] [--max-iterations 6000] [--mesh-only]
+#       [--tc 0.12] [--cli 0.5]
+#
+#   --level K         mesh level (0 coarsest; every level refines all lengths by sqrt 2)
+#   --tolerance T     stop when the estimated force error left is below T |F| (fsiDict
+#                     rigid.estimateForceError; residuals are not required)
+#   --max-iterations  SIMPLE iteration cap (the run is reported as not converged if reached)
+# Writes DIR/mesh (Gmsh input and log), DIR/case (OpenFOAM case, fields for ParaView in the last
+# time folder, postProcessing/ forces and yPlus) and DIR/section2d.csv (one row: level, cells,
+# flow, scheme, iterations, converged, C_L, C_D, C_M, y+ max / mean on the foil, CPU and wall
+# seconds). fluid-app must be on PATH (scripts/run and scripts/verify put build/bin there).
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+out="" level=0 flow=laminar scheme=linearUpwind tol=1e-6 maxIt=6000 meshOnly=0 tc=0.12 cli=0.5
+die() { echo "error: section2d/run2d.sh: $*" >&2; exit 2; }
+while [ $# -gt 0 ]; do
+    case "$1" in
+        --out) out="$2"; shift 2 ;;
+        --level) level="$2"; shift 2 ;;
+        --flow) flow="$2"; shift 2 ;;
+        --scheme) scheme="$2"; shift 2 ;;
+        --tolerance) tol="$2"; shift 2 ;;
+        --max-iterations) maxIt="$2"; shift 2 ;;
+        --mesh-only) meshOnly=1; shift ;;
+        --tc) tc="$2"; shift 2 ;;
+        --cli) cli="$2"; shift 2 ;;
+        -h|--help) sed -n '3,18p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        *) die "unknown option '$1' (see --help)" ;;
+    esac
+done
+[ -n "$out" ] || die "--out DIR is required (a run folder outside git)"
+[[ "$level" =~ ^[0-6]$ ]] || die "--level '$level' must be 0..6"
+case "$flow" in laminar|transition|turbulent) ;; *) die "--flow '$flow' unknown; use laminar, transition or turbulent" ;; esac
+case "$scheme" in upwind|linearUpwind) ;; *) die "--scheme '$scheme' unknown; use upwind or linearUpwind" ;; esac
+[ "$meshOnly" = 1 ] || command -v fluid-app > /dev/null || die "fluid-app not on PATH (run through scripts/run or scripts/verify, or add build/bin)"
+export WM_PROJECT_DIR="${WM_PROJECT_DIR:-/usr/share/openfoam}" FOAM_SIGFPE="${FOAM_SIGFPE:-false}"
+py=${FSI_PYTHON:-/usr/bin/python3}
+mkdir -p "$out"; out="$(cd "$out" && pwd)"
+log() { echo "[section2d $(date +%H:%M:%S)] $*"; }
+
+# ---- mesh: Gmsh (boundary-layer field, extruded one cell) -> gmshToFoam -----------------------
+mesh="$out/mesh"
+rm -rf "$mesh" "$out/case"; mkdir -p "$mesh"
+"$py" "$here/mesh2d.py" --level "$level" --out "$mesh" --tc "$tc" --cli "$cli" > /dev/null
+gmsh "$mesh/section2d.geo" -3 -o "$mesh/section2d.msh" > "$mesh/log.gmsh" 2>&1 \
+    || { tail -20 "$mesh/log.gmsh"; die "gmsh failed (see $mesh/log.gmsh)"; }
+case="$out/case"
+mkdir -p "$case"
+cp -r "$here/../fluid/system" "$here/../fluid/constant" "$case/"
+rm -rf "$case/system/presets" "$case/system/snappyHexMeshDict" "$case/system/blockMeshDict" \
+       "$case/system/surfaceFeatureExtractDict"
+cat > "$case/constant/dynamicMeshDict" <<'EOD'
+FoamFile { version 2.0; format ascii; class dictionary; location "constant"; object dynamicMeshDict; }
+dynamicFvMesh   staticFvMesh;   // 2-D section mode: rigid foil, no mesh motion
+EOD
+( cd "$case"
+  gmshToFoam "$mesh/section2d.msh" > log.gmshToFoam 2>&1 || { tail -20 log.gmshToFoam; exit 1; }
+  # patch types: Gmsh's physical names come in as generic patches
+  "$py" - constant/polyMesh/boundary <<'EOP'
+import re, sys
+path = sys.argv[1]
+s = open(path).read()
+kinds = {"frontAndBack": "empty", "sides": "symmetry", "foil": "wall",
+         "inlet": "patch", "outlet": "patch"}
+for name, kind in kinds.items():
+    s, n = re.subn(r"(\n\s*%s\s*\{[^}]*?type\s+)\w+;" % name, r"\g<1>%s;" % kind, s)
+    if n != 1:
+        sys.exit("section2d: patch %s not found in %s" % (name, path))
+s = re.sub(r"\n\s*physicalType\s+\w+;", "", s)
+open(path, "w").write(s)
+EOP
+  checkMesh > log.checkMesh 2>&1 || true
+)
+grep -q "^Mesh OK" "$case/log.checkMesh" || { grep -E "\*\*\*|FATAL" "$case/log.checkMesh" | head; die "checkMesh failed (see $case/log.checkMesh)"; }
+cells=$(awk '/^ *cells:/{print $2; exit}' "$case/log.checkMesh")
+foilFaces=$(awk '$1 == "foil" && $2 ~ /^[0-9]+$/ {print $2; exit}' "$case/log.checkMesh")
+nonOrtho=$(awk '/Mesh non-orthogonality Max:/{print $4; exit}' "$case/log.checkMesh")
+log "level $level: $cells cells, $foilFaces foil faces, max non-orthogonality $nonOrtho ($(cat "$mesh/section2d-mesh.txt"))"
+[ "$meshOnly" = 0 ] || exit 0
+
+# ---- case set-up --------------------------------------------------------------------------
+cp -r "$here/../fluid/0.orig" "$case/0"
+rm -f "$case/0/pointDisplacement"
+"$here/../tools/setFlow.sh" "$case" --flow "$flow" --scheme "$scheme" > /dev/null
+fd() { foamDictionary "$case/$1" -entry "$2" -set "$3" > /dev/null; }
+fd system/fsiDict rigid/maxIterations "$maxIt"
+fd system/fsiDict rigid/forceTolerance "$tol"
+fd system/fsiDict rigid/residualRequired false
+fd system/fsiDict rigid/estimateForceError true
+fd system/fsiDict rigid/minIterations 100
+fd system/controlDict endTime "$maxIt"
+fd system/controlDict writeInterval "$maxIt"
+fd system/controlDict functions/forces/CofR "(0.3685 0 0)"
+# first-cell y+ on the foil; evaluated after the solve (fluid-app steps time without running
+# function objects: simpleFoam -postProcess evaluates forces and yPlus on the written fields)
+fd system/controlDict functions/yPlus \
+    '{ type yPlus; libs ("libfieldFunctionObjects.so"); writeControl writeTime; patches (foil); }'
+
+# ---- solve --------------------------------------------------------------------------------
+log "fluid-app -rigid: flow $flow, scheme $scheme, estimated force error <= $tol |F|, cap $maxIt"
+t0=$(date +%s.%N)
+( cd "$case" && /usr/bin/time -f "%U %S" -o time.txt fluid-app -rigid > log.fluid-app 2>&1 ) \
+    || { tail -20 "$case/log.fluid-app"; die "fluid-app failed (see $case/log.fluid-app)"; }
+t1=$(date +%s.%N)
+( cd "$case" && simpleFoam -postProcess -latestTime > log.postProcess 2>&1 ) \
+    || { tail -20 "$case/log.postProcess"; die "simpleFoam -postProcess failed (see $case/log.postProcess)"; }
+"$py" - "$case" "$level" "$cells" "$flow" "$scheme" "$t0" "$t1" "$out/section2d.csv" <<'EOP'
+import csv, glob, math, os, re, sys
+case, level, cells, flow, scheme, t0, t1, outCsv = sys.argv[1:]
+row = next(csv.DictReader(open(os.path.join(case, "postProcessing/fsi/forces.csv"))))
+rho, U, c, dz = 998.2, 2.0, 0.05, 0.001
+q = 0.5 * rho * U * U
+fx, fy = float(row["Fx"]), float(row["Fy"])
+# moment about the quarter chord from the forces function object (last line: total moment)
+mom = sorted(glob.glob(os.path.join(case, "postProcessing/forces/*/moment.dat")))[-1]
+last = [l for l in open(mom) if l.strip() and not l.startswith("#")][-1]
+nums = [float(v) for v in re.findall(r"[-+]?\d+\.?\d*(?:[eE][-+]?\d+)?", last)]
+mz = nums[3]                      # time, total (Mx My Mz), ...
+fo = [l for l in open(mom.replace("moment.dat", "force.dat")) if l.strip() and not l.startswith("#")][-1]
+foF = [float(v) for v in re.findall(r"[-+]?\d+\.?\d*(?:[eE][-+]?\d+)?", fo)][1:3]
+if abs(foF[0] - fx) + abs(foF[1] - fy) > 1e-6 * math.hypot(fx, fy):
+    sys.exit("section2d: forces of fluid-app (%g %g) and of the forces function object (%g %g) differ"
+             % (fx, fy, foF[0], foF[1]))
+cpu = sum(float(v) for v in open(os.path.join(case, "time.txt")).read().split()[:2])
+yp = [l for l in open(os.path.join(case, "log.postProcess")) if "patch foil y+ :" in l]
+ypMin = ypMax = ypMean = float("nan")
+if yp:
+    m = re.search(r"min = ([-+\deE.]+), max = ([-+\deE.]+), average = ([-+\deE.]+)", yp[-1])
+    if m:
+        ypMin, ypMax, ypMean = map(float, m.groups())
+r = dict(level=level, cells=cells, flow=flow, scheme=scheme,
+         iterations=row["simpleIterations"], converged=row["converged"],
+         C_L=-fy / (q * c * dz), C_D=fx / (q * c * dz), C_M=mz / (q * c * c * dz),
+         yplus_max=ypMax, yplus_mean=ypMean, cpu_s=cpu, wall_s=float(t1) - float(t0))
+with open(outCsv, "w") as f:
+    f.write(",".join(r) + "\n")
+    f.write(",".join(("%.8g" % v) if isinstance(v, float) else str(v) for v in r.values()) + "\n")
+print("section2d: " + " ".join("%s=%s" % (k, ("%.6g" % v) if isinstance(v, float) else v)
+                               for k, v in r.items()))
+EOP

@@ -1,0 +1,48 @@
+#!/bin/bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# Select the flow model and the convection scheme of an OpenFOAM copy of the hydrofoil case.
+#
+#   cases/hydrofoil/tools/setFlow.sh CASE [--flow laminar|transition|turbulent]
+#                                         [--scheme upwind|linearUpwind]
+#
+#   --flow laminar      the paper's model (default)
+#          transition   Langtry-Menter kOmegaSSTLM (needs first-cell y+ <= 1)
+#          turbulent    k-omega SST
+#   --scheme upwind        first order, bounded (default)
+#            linearUpwind  second order, bounded, cell-limited gradients (U and the
+#                          turbulence fields)
+#
+# Copies fluid/flow/<flow> to CASE/constant/turbulenceProperties and sets divSchemes of
+# CASE/system/fvSchemes. The fields of every model are in fluid/0.orig (k, omega, nut,
+# ReThetat, gammaInt are read only by the RAS models). Prints "flow=F scheme=S".
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+die() { echo "error: setFlow.sh: $*" >&2; exit 2; }
+[ $# -ge 1 ] || die "usage: setFlow.sh CASE [--flow laminar|transition|turbulent] [--scheme upwind|linearUpwind]"
+case="$1"; shift
+flow=laminar scheme=upwind
+while [ $# -gt 0 ]; do
+    case "$1" in
+        --flow) flow="$2"; shift 2 ;;
+        --scheme) scheme="$2"; shift 2 ;;
+        *) die "unknown option '$1' (use --flow, --scheme)" ;;
+    esac
+done
+[ -f "$case/system/fvSchemes" ] || die "'$case' is not an OpenFOAM case (no system/fvSchemes)"
+[ -f "$here/fluid/flow/$flow" ] || die "--flow '$flow' unknown; use laminar, transition or turbulent"
+export WM_PROJECT_DIR="${WM_PROJECT_DIR:-/usr/share/openfoam}"
+cp "$here/fluid/flow/$flow" "$case/constant/turbulenceProperties"
+set_() { foamDictionary "$case/system/fvSchemes" -entry "$1" -set "$2" > /dev/null; }
+case "$scheme" in
+    upwind)
+        set_ "divSchemes/div(phi,U)" "bounded Gauss upwind"
+        for f in k omega ReThetat gammaInt; do set_ "divSchemes/div(phi,$f)" "bounded Gauss upwind"; done ;;
+    linearUpwind)
+        # cellLimited Gauss linear 1 gradients (fvSchemes gradSchemes): bounded reconstruction
+        set_ "divSchemes/div(phi,U)" "bounded Gauss linearUpwind grad(U)"
+        for f in k omega ReThetat gammaInt; do
+            set_ "divSchemes/div(phi,$f)" "bounded Gauss linearUpwind grad($f)"
+        done ;;
+    *) die "--scheme '$scheme' unknown; use upwind or linearUpwind" ;;
+esac
+echo "flow=$flow scheme=$scheme"
