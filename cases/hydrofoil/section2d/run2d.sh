@@ -12,7 +12,7 @@
 #   --tolerance T     stop when the estimated force error left is below T |F| (fsiDict
 #                     rigid.estimateForceError; residuals are not required)
 #   --max-iterations  SIMPLE iteration cap (the run is reported as not converged if reached)
-# Writes DIR/mesh (Gmsh input and log), DIR/case (OpenFOAM case, fields for ParaView in the last
+# Writes DIR/mesh (the C-grid as MSH 2.2 and its parameters), DIR/case (OpenFOAM case, fields for ParaView in the last
 # time folder, postProcessing/ forces and yPlus) and DIR/section2d.csv (one row: level, cells,
 # flow, scheme, iterations, converged, C_L, C_D, C_M, y+ max / mean on the foil, CPU and wall
 # seconds). fluid-app must be on PATH (scripts/run and scripts/verify put build/bin there).
@@ -45,12 +45,11 @@ py=${FSI_PYTHON:-/usr/bin/python3}
 mkdir -p "$out"; out="$(cd "$out" && pwd)"
 log() { echo "[section2d $(date +%H:%M:%S)] $*"; }
 
-# ---- mesh: Gmsh (boundary-layer field, extruded one cell) -> gmshToFoam -----------------------
+# ---- mesh: structured C-grid (mesh2d.py, Gmsh MSH 2.2) -> gmshToFoam ----------------------------
 mesh="$out/mesh"
 rm -rf "$mesh" "$out/case"; mkdir -p "$mesh"
-"$py" "$here/mesh2d.py" --level "$level" --out "$mesh" --tc "$tc" --cli "$cli" > /dev/null
-gmsh "$mesh/section2d.geo" -3 -o "$mesh/section2d.msh" > "$mesh/log.gmsh" 2>&1 \
-    || { tail -20 "$mesh/log.gmsh"; die "gmsh failed (see $mesh/log.gmsh)"; }
+"$py" "$here/mesh2d.py" --level "$level" --out "$mesh" --tc "$tc" --cli "$cli" > "$mesh/log.mesh2d" 2>&1 \
+    || { cat "$mesh/log.mesh2d"; die "mesh2d.py failed"; }
 case="$out/case"
 mkdir -p "$case"
 cp -r "$here/../fluid/system" "$here/../fluid/constant" "$case/"
