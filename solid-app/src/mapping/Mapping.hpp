@@ -9,7 +9,7 @@
 //   conservative (forces):        sourceValues = H^T targetValues      (per component)
 // For forces, build the mapping with source = solid wetted nodes and target = fluid face centres
 // and call applyConservative: total force is conserved exactly (H reproduces constants), total
-// moment too when H reproduces linear fields (both RBF kinds; not nearest-neighbour).
+// moment too when H reproduces linear fields (all RBF kinds; not nearest-neighbour).
 #pragma once
 
 #include <Eigen/Core>
@@ -32,7 +32,8 @@ class Mapping
 public:
     virtual ~Mapping() = default;
 
-    // Keyword of the strategy ("nearest-neighbour", "rbf-thin-plate", "rbf-wendland-c2").
+    // Keyword of the strategy ("nearest-neighbour", "rbf-thin-plate", "rbf-wendland-c2",
+    // "rbf-pu").
     virtual std::string name() const = 0;
 
     // Set-up (search trees, factorisations); the expensive part, done once per pair of meshes.
@@ -79,15 +80,26 @@ struct ThinPlateParameters
     void validate() const;
 };
 
+// Coefficients of rbf-pu (partition of unity): local RBF problems on overlapping patches of the
+// source cloud, blended by smooth weights (RbfPartitionOfUnity.hpp). Set-up O(N k^2).
+struct PartitionOfUnityParameters
+{
+    long pointsPerPatch = 20;   // k: source points of each local problem, >= 4 (dense k x k)
+    double centreSpacing = 0.7; // patch centres ~ this fraction of a patch radius apart, (0, 1);
+                                // smaller = more overlap (more patches per point, slower)
+    void validate() const;      // throws: points_per_patch must be in [4, 200], ...
+};
+
 struct MappingParameters
 {
-    // "nearest-neighbour" | "rbf-thin-plate" | "rbf-wendland-c2"
+    // "nearest-neighbour" | "rbf-thin-plate" | "rbf-wendland-c2" | "rbf-pu"
     std::string type = "nearest-neighbour";
     // checkOverlap(): max distance from a target point to the nearest source point, relative to
     // the source interface size (bounding-box diagonal); larger means the meshes do not match.
     double overlapTolerance = 0.1;
     WendlandParameters wendland;
     ThinPlateParameters thinPlate;
+    PartitionOfUnityParameters partitionOfUnity;
 
     // Throws std::runtime_error, one line naming the key (mapping.<key>) and the fix.
     void validate() const;

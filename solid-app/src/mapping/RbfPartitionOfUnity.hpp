@@ -1,0 +1,69 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// rbf-pu: partition-of-unity RBF for large interfaces (set-up and apply linear in N).
+// The source cloud is covered by overlapping patches; each patch p is the k nearest source
+// points of its centre c_p (k = points_per_patch), its radius rho_p the distance to the k-th.
+// Centres are picked greedily along a Morton (Z-order) sweep of the sources: a source becomes a
+// centre unless it lies within centre_spacing * rho of an earlier centre.
+// On each patch a local interpolant, polyharmonic cubic phi(r) = r^3 plus the linear polynomial
+// (in coordinates centred at c_p and scaled by rho_p), solved as the small dense saddle-point
+// system [Phi Q; Q^T 0] (Q: orthonormal basis of the linear functions the patch resolves).
+// The patches are blended with Wendland C2 weights w_p(x) = psi(|x - c_p| / rho_p),
+// psi(r) = (1 - r)^4_+ (4 r + 1), normalised to sum 1 at each target point:
+//   H = sum_p diag(w_p / sum_q w_q) L_p,      L_p: Lagrange matrix of patch p (targets x k)
+// stored as one sparse matrix (CSR, the union of the covering patches' points per row).
+// Consistent: target = H source. Conservative: source = H^T target (the same matrix).
+// Every local interpolant reproduces constants and linear functions and the weights sum to 1,
+// so H reproduces them exactly: total force and total moment are conserved to round-off.
+// A patch whose points are coplanar (or collinear) resolves fewer linear functions than the
+// whole interface; the targets it covers get the rank-r correction
+//   H += D Q^T,   D = Q_t - H Q   (Q, Q_t: the global linear basis at sources and targets)
+// so that linear fields stay exact there too (D is zero where no patch is degenerate).
+// A target covered by no patch (farther than a patch radius from every centre) gets a patch of
+// its own around its nearest source point, enlarged to reach it (extrapolation).
+// Apply allocates nothing after the first call with a given column count.
+#pragma once
+
+#include "mapping/Mapping.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace fsi::mapping
+{
+
+class RbfPartitionOfUnity final : public Mapping
+{
+public:
+    // Pre: params.validate() passes.
+    explicit RbfPartitionOfUnity(const PartitionOfUnityParameters& params) : params_(params) {}
+    std::string name() const override { return "rbf-pu"; }
+    // Throws std::runtime_error on coinciding source points or a singular local system.
+    void compute(const PointCloud& source, const PointCloud& target) override;
+    void applyConsistent(const Eigen::Ref<const Values>& sourceValues,
+                         Eigen::Ref<Values> targetValues) const override;
+    void applyConservative(const Eigen::Ref<const Values>& targetValues,
+                           Eigen::Ref<Values> sourceValues) const override;
+
+    // For the log and the bench.
+    Eigen::Index patchCount() const { return patchCount_; }
+    Eigen::Index nonZeros() const { return static_cast<Eigen::Index>(column_.size()); }
+    double meanPatchesPerTarget() const { return meanPatchesPerTarget_; }
+    Eigen::Index degeneratePatches() const { return degeneratePatches_; }
+    Eigen::Index correctedTargets() const { return static_cast<Eigen::Index>(corrected_.size()); }
+
+private:
+    PartitionOfUnityParameters params_;
+    // H in compressed rows: row t holds value_[i], column_[i] for i in [rowStart_[t], rowStart_[t+1]).
+    std::vector<std::int64_t> rowStart_;
+    std::vector<std::int32_t> column_;
+    std::vector<double> value_;
+    // Degenerate-patch correction: D (corrected targets x r) and the source basis Q (N_s x r).
+    std::vector<Eigen::Index> corrected_;
+    Eigen::MatrixXd correction_, sourceBasis_;
+    Eigen::Index patchCount_ = 0, degeneratePatches_ = 0;
+    double meanPatchesPerTarget_ = 0.0;
+    mutable Eigen::MatrixXd projected_; // workspace, r x columns
+};
+
+} // namespace fsi::mapping
