@@ -5,7 +5,7 @@
 #include "mapping/RbfSupport.hpp"
 
 #include <Eigen/LU>
-#include <Eigen/SVD>
+#include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <cmath>
@@ -27,25 +27,12 @@ namespace
 // largest are dropped (coplanar or collinear patch points); see the header's correction.
 constexpr double polynomialDrop = 1e-4;
 
-int kernelKind()
-{
-    static const int kind = [] {
-        const char* e = std::getenv("FSI_PU_KERNEL");
-        return e ? std::atoi(e) : 0;
-    }();
-    return kind;
-}
-
-// Local kernel of squared distance (coordinates scaled by the patch radius).
+// Local kernel, polyharmonic cubic phi(r) = r^3, of the squared distance r^2 (coordinates
+// scaled by the patch radius). Conditionally positive definite of order 2: with the linear
+// polynomial the local system is non-singular for distinct points.
 inline double kernel(double r2)
 {
-    switch (kernelKind())
-    {
-    case 1: // thin-plate
-        return r2 > 0.0 ? 0.5 * r2 * std::log(r2) : 0.0;
-    default: // cubic
-        return r2 * std::sqrt(r2);
-    }
+    return r2 * std::sqrt(r2);
 }
 
 // Partition-of-unity weight, Wendland C2 of r / rho.
@@ -142,14 +129,14 @@ std::string pointText(const PointCloud& points, Eigen::Index i)
 
 // Local problem of one patch. Fills M (k x (k + 4), column-major) such that the patch's
 // interpolant at x is sum_j L_j(x) f_j with L(x) = M [phi(|x^ - x^_j|^2); 1; x^],
-// x^ = (x - c) / rho. Returns the number of linear directions the patch resolves.
+// x^ = (x - c) / rho, followed by the member coordinates x^_j (3 x k, axis by axis). Returns the number of linear functions the patch resolves (1..4).
+// Polynomial basis: the constant and the principal axes of the patch points (centroid m,
+// covariance eigenpairs (lambda_i, v_i)), q_i(x) = (x^ - m) . v_i / sqrt(lambda_i): orthonormal
+// at the patch points; axes with sqrt(lambda_i) < polynomialDrop sqrt(lambda_max) are dropped.
 class LocalSolver
 {
 public:
-    explicit LocalSolver(int k)
-        : k_(k), points_(k, 3), basis_(k, 4), svd_(k, 4, Eigen::ComputeThinU | Eigen::ComputeThinV)
-    {
-    }
+    explicit LocalSolver(int k) : k_(k), points_(k, 3) {}
 
     int solve(const PointCloud& s, const Patches& patches, Eigen::Index p, double duplicate2,
               const PointCloud& source, double* m)
@@ -158,19 +145,36 @@ public:
         const double* c = patches.centreOf(p);
         const double rho = patches.radius[static_cast<size_t>(p)];
         const std::int32_t* members = patches.membersOf(p);
+        const double scale = 1.0 / rho;
+        double* local = m + k * (k + 4); // x^ of the members, axis by axis
         for (int j = 0; j < k; ++j)
             for (int a = 0; a < 3; ++a)
-                points_(j, a) = (s(members[j], a) - c[a]) / rho;
-        basis_.col(0).setOnes();
-        basis_.rightCols(3) = points_;
-        svd_.compute(basis_, Eigen::ComputeThinU | Eigen::ComputeThinV);
-        const Eigen::VectorXd& sv = svd_.singularValues();
-        int r = 0;
-        while (r < sv.size() && sv(r) > polynomialDrop * sv(0))
-            ++r;
+                local[a * k + j] = points_(j, a) = (s(members[j], a) - c[a]) * scale;
+        const Eigen::RowVector3d mean = points_.colwise().mean();
+        Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+        for (int j = 0; j < k; ++j)
+        {
+            const Eigen::RowVector3d y = points_.row(j) - mean;
+            covariance.noalias() += y.transpose() * y;
+        }
+        eigen_.compute(covariance);
+        const Eigen::Vector3d& lambda = eigen_.eigenvalues(); // increasing
+        // transform_ (4 x r): q(x) = transform_^T [1; x^].
+        transform_.setZero(4, 4);
+        transform_(0, 0) = 1.0 / std::sqrt(double(k));
+        int r = 1;
+        for (int a = 2; a >= 0; --a)
+            if (lambda(a) > 0.0 && lambda(a) > polynomialDrop * polynomialDrop * lambda(2))
+            {
+                const Eigen::Vector3d axis = eigen_.eigenvectors().col(a) / std::sqrt(lambda(a));
+                transform_(0, r) = -mean.dot(axis);
+                transform_.block<3, 1>(1, r) = axis;
+                ++r;
+            }
 
         system_.setZero(k + r, k + r);
         for (int j = 0; j < k; ++j)
+        {
             for (int i = 0; i < j; ++i)
             {
                 const double d2 = (points_.row(i) - points_.row(j)).squaredNorm();
@@ -182,8 +186,12 @@ public:
                         "; merge duplicate wetted nodes or use type nearest-neighbour");
                 system_(i, j) = system_(j, i) = kernel(d2);
             }
-        system_.topRightCorner(k, r) = svd_.matrixU().leftCols(r);
-        system_.bottomLeftCorner(r, k) = svd_.matrixU().leftCols(r).transpose();
+            system_(j, k) = system_(k, j) = transform_(0, 0);
+            for (int i = 1; i < r; ++i)
+                system_(j, k + i) = system_(k + i, j) =
+                    transform_(0, i) + points_(j, 0) * transform_(1, i) +
+                    points_(j, 1) * transform_(2, i) + points_(j, 2) * transform_(3, i);
+        }
         lu_.compute(system_);
         if (!(lu_.rcond() > 1e-13))
             throw std::runtime_error("mapping rbf-pu: local system of the patch at " +
@@ -191,26 +199,25 @@ public:
                                      " is singular; check for near-duplicate source points or "
                                      "raise mapping.rbf-pu.points_per_patch");
         identity_.setIdentity(k + r, k);
-        inverse_ = lu_.solve(identity_); // (k + r) x k: A^{-1} restricted to the data columns
+        inverse_.noalias() = lu_.solve(identity_); // (k + r) x k: A^{-1}, data columns
         Eigen::Map<Eigen::MatrixXd> out(m, k, k + 4);
         out.leftCols(k) = inverse_.topRows(k);
-        // Polynomial part: q(x) = (V_r S_r^{-1})^T [1; x^], so M_poly = Ainv_pk (V_r S_r^{-1})^T.
-        transform_ = svd_.matrixV().leftCols(r) * sv.head(r).cwiseInverse().asDiagonal();
-        out.rightCols(4).noalias() = inverse_.bottomRows(r).transpose() * transform_.transpose();
+        out.rightCols(4).noalias() =
+            inverse_.bottomRows(r).transpose() * transform_.leftCols(r).transpose();
         return r;
     }
 
 private:
     int k_;
-    Eigen::MatrixXd points_, basis_, system_, identity_, inverse_, transform_;
-    Eigen::JacobiSVD<Eigen::MatrixXd> svd_;
+    Eigen::MatrixXd points_, system_, identity_, inverse_, transform_;
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen_;
     Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
 };
 
+// y = H x (Columns columns at once: one pass over H).
 template <int Columns>
-void multiplyFixed(const std::vector<std::int64_t>& rowStart, const std::vector<std::int32_t>& column,
-                   const std::vector<double>& value, const Eigen::Ref<const Values>& x,
-                   Eigen::Ref<Values> y)
+void multiplyFixed(const std::vector<std::int64_t>& rowStart, const std::int32_t* column,
+                   const double* value, const Eigen::Ref<const Values>& x, Eigen::Ref<Values> y)
 {
     const double* in[Columns];
     double* out[Columns];
@@ -226,8 +233,8 @@ void multiplyFixed(const std::vector<std::int64_t>& rowStart, const std::vector<
         for (std::int64_t i = rowStart[static_cast<size_t>(t)];
              i < rowStart[static_cast<size_t>(t) + 1]; ++i)
         {
-            const double v = value[static_cast<size_t>(i)];
-            const std::int32_t j = column[static_cast<size_t>(i)];
+            const double v = value[i];
+            const std::int32_t j = column[i];
             for (int c = 0; c < Columns; ++c)
                 sum[c] += v * in[c][j];
         }
@@ -236,11 +243,11 @@ void multiplyFixed(const std::vector<std::int64_t>& rowStart, const std::vector<
     }
 }
 
+// y += H^T x.
 template <int Columns>
 void multiplyTransposedFixed(const std::vector<std::int64_t>& rowStart,
-                             const std::vector<std::int32_t>& column,
-                             const std::vector<double>& value, const Eigen::Ref<const Values>& x,
-                             Eigen::Ref<Values> y)
+                             const std::int32_t* column, const double* value,
+                             const Eigen::Ref<const Values>& x, Eigen::Ref<Values> y)
 {
     const double* in[Columns];
     double* out[Columns];
@@ -258,8 +265,8 @@ void multiplyTransposedFixed(const std::vector<std::int64_t>& rowStart,
         for (std::int64_t i = rowStart[static_cast<size_t>(t)];
              i < rowStart[static_cast<size_t>(t) + 1]; ++i)
         {
-            const double v = value[static_cast<size_t>(i)];
-            const std::int32_t j = column[static_cast<size_t>(i)];
+            const double v = value[i];
+            const std::int32_t j = column[i];
             for (int c = 0; c < Columns; ++c)
                 out[c][j] += v * g[c];
         }
@@ -325,6 +332,7 @@ void RbfPartitionOfUnity::compute(const PointCloud& source, const PointCloud& ta
     std::vector<std::int32_t> count(static_cast<size_t>(nt), 0);
     {
         const KdTree targetTree(t);
+        PHASE("target tree")
         std::vector<std::pair<Eigen::Index, double>> found;
         for (Eigen::Index p = 0; p < patches.size(); ++p)
             addCover(targetTree, patches, p, found, cover, count);
@@ -362,19 +370,7 @@ void RbfPartitionOfUnity::compute(const PointCloud& source, const PointCloud& ta
     std::vector<std::int32_t>().swap(count);
 
     PHASE("sort")
-    // 3. Local Lagrange operators.
-    const Eigen::Index stride = Eigen::Index(k) * (k + 4);
-    std::vector<double> lagrange(static_cast<size_t>(patches.size() * stride));
-    std::vector<char> rank(static_cast<size_t>(patches.size()));
-    {
-        LocalSolver solver(k);
-        for (Eigen::Index p = 0; p < patches.size(); ++p)
-            rank[static_cast<size_t>(p)] = static_cast<char>(
-                solver.solve(s, patches, p, duplicate2, source, lagrange.data() + p * stride));
-    }
-
-    PHASE("local")
-    // 4. Rows of H: union of the covering patches' points, weights normalised.
+    // 3. Row lengths of H: the union of the covering patches' points.
     std::vector<std::int32_t> mark(static_cast<size_t>(ns), -1), slot(static_cast<size_t>(ns), 0);
     rowStart_.assign(static_cast<size_t>(nt) + 1, 0);
     for (Eigen::Index i = 0; i < nt; ++i)
@@ -392,41 +388,80 @@ void RbfPartitionOfUnity::compute(const PointCloud& source, const PointCloud& ta
         }
         rowStart_[static_cast<size_t>(i) + 1] = rowStart_[static_cast<size_t>(i)] + n;
     }
-    column_.assign(static_cast<size_t>(rowStart_.back()), 0);
-    value_.assign(static_cast<size_t>(rowStart_.back()), 0.0);
+    nonZeros_ = rowStart_.back();
+    column_.reset(new std::int32_t[static_cast<size_t>(nonZeros_)]);
+    value_.reset(new double[static_cast<size_t>(nonZeros_)]);
+    if (std::getenv("PRETOUCH")) { std::fill(value_.get(), value_.get() + nonZeros_, 0.0); std::fill(column_.get(), column_.get() + nonZeros_, 0); }
+    PHASE("alloc")
     std::fill(mark.begin(), mark.end(), -1);
-    Eigen::VectorXd e(k + 4), lagrangeRow(k);
-    for (Eigen::Index i = 0; i < nt; ++i)
+
+    PHASE("count")
+    // 4. Rows of H, targets in Morton order so that the patches they need are recent: each
+    // patch's Lagrange operator is computed on first use and its block recycled after its last.
+    const Eigen::Index stride = Eigen::Index(k) * (k + 7);
+    std::vector<std::int32_t> uses(static_cast<size_t>(patches.size()), 0), block(static_cast<size_t>(patches.size()), -1);
+    for (const std::int32_t p : coverPatch)
+        ++uses[static_cast<size_t>(p)];
+    std::vector<char> rank(static_cast<size_t>(patches.size()), 4);
+    std::vector<double> pool;
+    std::vector<std::int32_t> freeBlocks;
+    LocalSolver solver(k);
+    std::vector<double> e(static_cast<size_t>(k) + 4), lagrangeRow(static_cast<size_t>(k));
+    double solveTime = 0;
+    for (const Eigen::Index i : mortonOrder(t))
     {
         double total = 0.0;
         for (std::int64_t c = coverStart[static_cast<size_t>(i)]; c < coverStart[static_cast<size_t>(i) + 1]; ++c)
             total += coverWeight[static_cast<size_t>(c)];
-        std::int64_t end = rowStart_[static_cast<size_t>(i)];
+        const std::int64_t rowBegin = rowStart_[static_cast<size_t>(i)];
+        std::int64_t end = rowBegin;
         for (std::int64_t c = coverStart[static_cast<size_t>(i)]; c < coverStart[static_cast<size_t>(i) + 1]; ++c)
         {
             const Eigen::Index p = coverPatch[static_cast<size_t>(c)];
+            std::int32_t& b = block[static_cast<size_t>(p)];
+            if (b < 0)
+            {
+                if (freeBlocks.empty())
+                {
+                    b = static_cast<std::int32_t>(pool.size() / static_cast<size_t>(stride));
+                    pool.resize(pool.size() + static_cast<size_t>(stride));
+                }
+                else
+                {
+                    b = freeBlocks.back();
+                    freeBlocks.pop_back();
+                }
+                const double q0 = fsiCpu();
+                rank[static_cast<size_t>(p)] = static_cast<char>(
+                    solver.solve(s, patches, p, duplicate2, source, pool.data() + b * stride));
+                solveTime += fsiCpu() - q0;
+            }
             const double* centre = patches.centreOf(p);
-            const double rho = patches.radius[static_cast<size_t>(p)];
+            const double scale = 1.0 / patches.radius[static_cast<size_t>(p)];
             const std::int32_t* members = patches.membersOf(p);
-            double x[3];
-            for (int a = 0; a < 3; ++a)
-                x[a] = (t(i, a) - centre[a]) / rho;
+            const double* m = pool.data() + b * stride;
+            const double* local = m + k * (k + 4);
+            const double x0 = (t(i, 0) - centre[0]) * scale, x1 = (t(i, 1) - centre[1]) * scale,
+                         x2 = (t(i, 2) - centre[2]) * scale;
             for (int j = 0; j < k; ++j)
             {
-                double d2 = 0.0;
-                for (int a = 0; a < 3; ++a)
-                {
-                    const double d = x[a] - (s(members[j], a) - centre[a]) / rho;
-                    d2 += d * d;
-                }
-                e(j) = kernel(d2);
+                const double d0 = x0 - local[j], d1 = x1 - local[k + j], d2 = x2 - local[2 * k + j];
+                e[j] = kernel(d0 * d0 + d1 * d1 + d2 * d2);
             }
-            e(k) = 1.0;
-            e(k + 1) = x[0];
-            e(k + 2) = x[1];
-            e(k + 3) = x[2];
-            lagrangeRow.noalias() =
-                Eigen::Map<const Eigen::MatrixXd>(lagrange.data() + p * stride, k, k + 4) * e;
+            e[k] = 1.0;
+            e[k + 1] = x0;
+            e[k + 2] = x1;
+            e[k + 3] = x2;
+            std::fill(lagrangeRow.begin(), lagrangeRow.end(), 0.0);
+            for (int a = 0; a < k + 4; ++a)
+            {
+                const double ea = e[a];
+                const double* column = m + a * k;
+                for (int j = 0; j < k; ++j)
+                    lagrangeRow[j] += column[j] * ea;
+            }
+            if (--uses[static_cast<size_t>(p)] == 0)
+                freeBlocks.push_back(b);
             const double w = coverWeight[static_cast<size_t>(c)] / total;
             for (int j = 0; j < k; ++j)
             {
@@ -434,19 +469,20 @@ void RbfPartitionOfUnity::compute(const PointCloud& source, const PointCloud& ta
                 if (mark[g] != i)
                 {
                     mark[g] = static_cast<std::int32_t>(i);
-                    slot[g] = static_cast<std::int32_t>(end - rowStart_[static_cast<size_t>(i)]);
+                    slot[g] = static_cast<std::int32_t>(end - rowBegin);
                     column_[static_cast<size_t>(end)] = members[j];
-                    value_[static_cast<size_t>(end)] = w * lagrangeRow(j);
+                    value_[static_cast<size_t>(end)] = w * lagrangeRow[j];
                     ++end;
                 }
                 else
-                    value_[static_cast<size_t>(rowStart_[static_cast<size_t>(i)] + slot[g])] +=
-                        w * lagrangeRow(j);
+                    value_[static_cast<size_t>(rowBegin + slot[g])] += w * lagrangeRow[j];
             }
         }
     }
-
     PHASE("rows")
+    if (std::getenv("FSI_PU_PROFILE")) std::fprintf(stderr, "  solves %.3f\n", solveTime);
+    if (std::getenv("FSI_PU_PROFILE")) std::fprintf(stderr, "  pool blocks %zu of %ld patches\n", pool.size() / size_t(stride), long(patches.size()));
+
     // 5. Degenerate patches: correction D = Q_t - H Q on the targets they cover.
     corrected_.clear();
     correction_.resize(0, 0);
@@ -479,7 +515,7 @@ void RbfPartitionOfUnity::compute(const PointCloud& source, const PointCloud& ta
         }
     }
     PHASE("degenerate")
-    if (std::getenv("FSI_PU_PROFILE")) std::fprintf(stderr, "  patches %ld per-target %.2f nnz/row %.1f\n", long(patchCount_), meanPatchesPerTarget_, double(column_.size())/nt);
+    if (std::getenv("FSI_PU_PROFILE")) std::fprintf(stderr, "  patches %ld per-target %.2f nnz/row %.1f\n", long(patchCount_), meanPatchesPerTarget_, double(nonZeros_)/nt);
     sourceSize_ = ns;
     targetSize_ = nt;
 }
@@ -489,10 +525,10 @@ void RbfPartitionOfUnity::applyConsistent(const Eigen::Ref<const Values>& source
 {
     const Eigen::Index columns = sourceValues.cols();
     if (columns == 3)
-        multiplyFixed<3>(rowStart_, column_, value_, sourceValues, targetValues);
+        multiplyFixed<3>(rowStart_, column_.get(), value_.get(), sourceValues, targetValues);
     else
         for (Eigen::Index c = 0; c < columns; ++c)
-            multiplyFixed<1>(rowStart_, column_, value_, sourceValues.col(c), targetValues.col(c));
+            multiplyFixed<1>(rowStart_, column_.get(), value_.get(), sourceValues.col(c), targetValues.col(c));
     if (corrected_.empty())
         return;
     if (projected_.rows() != sourceBasis_.cols() || projected_.cols() != columns)
@@ -511,10 +547,10 @@ void RbfPartitionOfUnity::applyConservative(const Eigen::Ref<const Values>& targ
     const Eigen::Index columns = targetValues.cols();
     sourceValues.setZero();
     if (columns == 3)
-        multiplyTransposedFixed<3>(rowStart_, column_, value_, targetValues, sourceValues);
+        multiplyTransposedFixed<3>(rowStart_, column_.get(), value_.get(), targetValues, sourceValues);
     else
         for (Eigen::Index c = 0; c < columns; ++c)
-            multiplyTransposedFixed<1>(rowStart_, column_, value_, targetValues.col(c),
+            multiplyTransposedFixed<1>(rowStart_, column_.get(), value_.get(), targetValues.col(c),
                                        sourceValues.col(c));
     if (corrected_.empty())
         return;

@@ -27,6 +27,7 @@
 #include "mapping/Mapping.hpp"
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace fsi::mapping
@@ -47,7 +48,7 @@ public:
 
     // For the log and the bench.
     Eigen::Index patchCount() const { return patchCount_; }
-    Eigen::Index nonZeros() const { return static_cast<Eigen::Index>(column_.size()); }
+    Eigen::Index nonZeros() const { return static_cast<Eigen::Index>(nonZeros_); }
     double meanPatchesPerTarget() const { return meanPatchesPerTarget_; }
     Eigen::Index degeneratePatches() const { return degeneratePatches_; }
     Eigen::Index correctedTargets() const { return static_cast<Eigen::Index>(corrected_.size()); }
@@ -55,9 +56,11 @@ public:
 private:
     PartitionOfUnityParameters params_;
     // H in compressed rows: row t holds value_[i], column_[i] for i in [rowStart_[t], rowStart_[t+1]).
+    // (Plain arrays: filled once, no zero-initialisation pass over ~50 entries per target.)
     std::vector<std::int64_t> rowStart_;
-    std::vector<std::int32_t> column_;
-    std::vector<double> value_;
+    std::unique_ptr<std::int32_t[]> column_;
+    std::unique_ptr<double[]> value_;
+    std::int64_t nonZeros_ = 0;
     // Degenerate-patch correction: D (corrected targets x r) and the source basis Q (N_s x r).
     std::vector<Eigen::Index> corrected_;
     Eigen::MatrixXd correction_, sourceBasis_;
