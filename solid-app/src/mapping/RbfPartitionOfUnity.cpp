@@ -4,14 +4,19 @@
 #include "mapping/KdTree.hpp"
 #include "mapping/RbfSupport.hpp"
 
-#include <Eigen/LU>
 #include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+
+#ifdef __linux__
+#include <sys/mman.h>
+#endif
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <new>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -21,8 +26,40 @@ static double fsiCpu() { timespec ts{}; clock_gettime(CLOCK_PROCESS_CPUTIME_ID, 
 
 namespace fsi::mapping
 {
+
+namespace detail
+{
+void* allocateLarge(std::size_t bytes)
+{
+    constexpr std::size_t hugePage = std::size_t(2) << 20;
+    void* p = nullptr;
+    if (bytes < 2 * hugePage)
+        p = std::malloc(std::max<std::size_t>(bytes, 1));
+    else
+    {
+        const std::size_t rounded = (bytes + hugePage - 1) / hugePage * hugePage;
+        p = std::aligned_alloc(hugePage, rounded);
+#ifdef MADV_HUGEPAGE
+        if (p)
+            madvise(p, rounded, MADV_HUGEPAGE); // a hint: failure only costs speed
+#endif
+    }
+    if (!p)
+        throw std::bad_alloc();
+    return p;
+}
+
+void FreeLarge::operator()(void* p) const
+{
+    std::free(p);
+}
+} // namespace detail
+
 namespace
 {
+using detail::LargeArray;
+using detail::makeLargeArray;
+
 // Linear-polynomial directions of a patch with singular value below this fraction of the
 // largest are dropped (coplanar or collinear patch points); see the header's correction.
 constexpr double polynomialDrop = 1e-4;
@@ -33,13 +70,6 @@ constexpr double polynomialDrop = 1e-4;
 inline double kernel(double r2)
 {
     return r2 * std::sqrt(r2);
-}
-
-// Partition-of-unity weight, Wendland C2 of r / rho.
-inline double weight(double rOverRho)
-{
-    const double a = 1.0 - rOverRho;
-    return a > 0.0 ? a * a * a * a * (4.0 * rOverRho + 1.0) : 0.0;
 }
 
 // 21 bits of v spread to every third bit.
@@ -55,24 +85,32 @@ std::uint64_t spreadBits(std::uint64_t v)
 }
 
 // Point indices sorted along the Morton (Z-order) curve of their bounding box.
-std::vector<Eigen::Index> mortonOrder(const PointCloud& p)
+std::vector<std::int32_t> mortonOrder(const PointCloud& p)
 {
     const Eigen::RowVector3d lo = p.colwise().minCoeff(), hi = p.colwise().maxCoeff();
     const double extent = std::max((hi - lo).maxCoeff(), std::numeric_limits<double>::min());
     const double steps = double((1 << 21) - 1) / extent;
-    std::vector<std::pair<std::uint64_t, Eigen::Index>> code(static_cast<size_t>(p.rows()));
+    std::vector<std::pair<std::uint64_t, std::int32_t>> code(static_cast<size_t>(p.rows()));
     for (Eigen::Index i = 0; i < p.rows(); ++i)
     {
         std::uint64_t c = 0;
         for (int a = 0; a < 3; ++a)
             c |= spreadBits(static_cast<std::uint64_t>((p(i, a) - lo(a)) * steps)) << a;
-        code[static_cast<size_t>(i)] = {c, i};
+        code[static_cast<size_t>(i)] = {c, static_cast<std::int32_t>(i)};
     }
     std::sort(code.begin(), code.end());
-    std::vector<Eigen::Index> order(code.size());
+    std::vector<std::int32_t> order(code.size());
     for (size_t i = 0; i < code.size(); ++i)
         order[i] = code[i].second;
     return order;
+}
+
+std::string pointText(const PointCloud& points, Eigen::Index i)
+{
+    char text[96];
+    std::snprintf(text, sizeof text, "(%.4g %.4g %.4g) m", points(i, 0), points(i, 1),
+                  points(i, 2));
+    return text;
 }
 
 // Patches: centre (3), radius and k member indices each, stored flat.
@@ -92,40 +130,51 @@ struct Patches
     }
     const double* centreOf(Eigen::Index p) const { return centre.data() + 3 * p; }
     const std::int32_t* membersOf(Eigen::Index p) const { return member.data() + k * p; }
-};
 
-// Target-to-patch cover: (target, patch, unnormalised weight).
-struct Cover
-{
-    Eigen::Index target;
-    std::int32_t patch;
-    double weight;
-};
-
-void addCover(const KdTree& targets, const Patches& patches, Eigen::Index p,
-              std::vector<std::pair<Eigen::Index, double>>& found, std::vector<Cover>& cover,
-              std::vector<std::int32_t>& count)
-{
-    const double rho = patches.radius[static_cast<size_t>(p)];
-    targets.withinRadius(patches.centreOf(p), rho, found);
-    for (const auto& [t, d2] : found)
+    // Partition-of-unity weight of patch p at x (3 doubles, m): Wendland C2 of |x - c| / rho,
+    // psi(r) = (1 - r)^4 (4 r + 1) for r < 1, else 0.
+    double weight(Eigen::Index p, const double* x) const
     {
-        const double w = weight(std::sqrt(d2) / rho);
-        if (w > 0.0)
+        const double* c = centreOf(p);
+        const double d0 = x[0] - c[0], d1 = x[1] - c[1], d2 = x[2] - c[2];
+        const double r = std::sqrt(d0 * d0 + d1 * d1 + d2 * d2) / radius[static_cast<size_t>(p)];
+        const double a = 1.0 - r;
+        return a > 0.0 ? a * a * a * a * (4.0 * r + 1.0) : 0.0;
+    }
+};
+
+// (target, patch) pairs in chunks of fixed size (no copies while growing).
+class CoverPairs
+{
+public:
+    void push(std::int32_t target, std::int32_t patch)
+    {
+        if (used_ == chunk)
         {
-            cover.push_back({t, static_cast<std::int32_t>(p), w});
-            ++count[static_cast<size_t>(t)];
+            chunks_.push_back(makeLargeArray<std::int32_t>(2 * chunk));
+            used_ = 0;
+        }
+        chunks_.back()[2 * used_] = target;
+        chunks_.back()[2 * used_ + 1] = patch;
+        ++used_;
+        ++size_;
+    }
+    std::int64_t size() const { return size_; }
+    template <class F> void forEach(F&& f) const
+    {
+        for (size_t c = 0; c < chunks_.size(); ++c)
+        {
+            const std::int64_t n = c + 1 < chunks_.size() ? chunk : used_;
+            for (std::int64_t i = 0; i < n; ++i)
+                f(chunks_[c][2 * i], chunks_[c][2 * i + 1]);
         }
     }
-}
 
-std::string pointText(const PointCloud& points, Eigen::Index i)
-{
-    char text[96];
-    std::snprintf(text, sizeof text, "(%.4g %.4g %.4g) m", points(i, 0), points(i, 1),
-                  points(i, 2));
-    return text;
-}
+private:
+    static constexpr std::int64_t chunk = std::int64_t(1) << 19; // 4 MiB
+    std::vector<LargeArray<std::int32_t>> chunks_;
+    std::int64_t used_ = chunk, size_ = 0;
+};
 
 // Local problem of one patch. Fills M (k x (k + 4), column-major) such that the patch's
 // interpolant at x is sum_j L_j(x) f_j with L(x) = M [phi(|x^ - x^_j|^2); 1; x^],
@@ -138,8 +187,8 @@ class LocalSolver
 public:
     explicit LocalSolver(int k) : k_(k), points_(k, 3) {}
 
-    int solve(const PointCloud& s, const Patches& patches, Eigen::Index p, double duplicate2,
-              const PointCloud& source, double* m)
+    int solve(const PointCloud& source, const Patches& patches, Eigen::Index p, double duplicate2,
+              double* m)
     {
         const int k = k_;
         const double* c = patches.centreOf(p);
@@ -149,7 +198,7 @@ public:
         double* local = m + k * (k + 4); // x^ of the members, axis by axis
         for (int j = 0; j < k; ++j)
             for (int a = 0; a < 3; ++a)
-                local[a * k + j] = points_(j, a) = (s(members[j], a) - c[a]) * scale;
+                local[a * k + j] = points_(j, a) = (source(members[j], a) - c[a]) * scale;
         const Eigen::RowVector3d mean = points_.colwise().mean();
         Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
         for (int j = 0; j < k; ++j)
@@ -278,34 +327,32 @@ void RbfPartitionOfUnity::compute(const PointCloud& source, const PointCloud& ta
 {
     params_.validate();
     double phase0 = fsiCpu();
-    if (source.rows() == 0 || target.rows() == 0)
+    const Eigen::Index ns = source.rows(), nt = target.rows();
+    if (ns == 0 || nt == 0)
         throw std::runtime_error("mapping rbf-pu: empty interface point cloud (source " +
-                                 std::to_string(source.rows()) + " points, target " +
-                                 std::to_string(target.rows()) + ")");
-    if (source.rows() > std::numeric_limits<std::int32_t>::max() ||
-        target.rows() > std::numeric_limits<std::int32_t>::max())
-        throw std::runtime_error("mapping rbf-pu: more than 2^31 interface points");
-    const detail::Normalisation normalisation(source);
-    const PointCloud s = normalisation.apply(source), t = normalisation.apply(target);
-    const Eigen::Index ns = s.rows(), nt = t.rows();
-    const double size = (s.colwise().maxCoeff() - s.colwise().minCoeff()).norm();
-    const double duplicate2 = std::pow(1e-12 * std::max(size, 1.0), 2);
-    const KdTree sourceTree(s);
+                                 std::to_string(ns) + " points, target " + std::to_string(nt) +
+                                 ")");
+    if (ns > std::numeric_limits<std::int32_t>::max() ||
+        nt > std::numeric_limits<std::int32_t>::max())
+        throw std::runtime_error("mapping rbf-pu: more than 2^31 - 1 interface points");
+    const double size = (source.colwise().maxCoeff() - source.colwise().minCoeff()).norm();
+    const double duplicate2 = std::pow(1e-12 * size, 2);
+    const KdTree sourceTree(source);
+    const int k = static_cast<int>(std::min<Eigen::Index>(params_.pointsPerPatch, ns));
 
     PHASE("tree")
-    // 1. Patches covering every source point (within centre_spacing * rho of a centre).
+    // 1. Patches: every source point within centre_spacing * rho of a centre.
     Patches patches;
-    patches.k = static_cast<int>(std::min<Eigen::Index>(params_.pointsPerPatch, ns));
-    const int k = patches.k;
+    patches.k = k;
     std::vector<Eigen::Index> index;
     std::vector<double> distance;
     {
         std::vector<char> covered(static_cast<size_t>(ns), 0);
-        for (const Eigen::Index i : mortonOrder(s))
+        for (const std::int32_t i : mortonOrder(source))
         {
             if (covered[static_cast<size_t>(i)])
                 continue;
-            sourceTree.nearest(s.row(i).data(), k, index, distance);
+            sourceTree.nearest(source.row(i).data(), k, index, distance);
             double rho = distance.back();
             if (!(rho > 0.0))
             {
@@ -316,9 +363,9 @@ void RbfPartitionOfUnity::compute(const PointCloud& source, const PointCloud& ta
                                              pointText(source, i) +
                                              "; merge duplicate wetted nodes or use type "
                                              "nearest-neighbour");
-                rho = 1.0; // a single source point
+                rho = 1.0; // a single source point: any radius
             }
-            patches.add(s.row(i).data(), rho, index);
+            patches.add(source.row(i).data(), rho, index);
             for (int j = 0; j < k; ++j)
                 if (distance[static_cast<size_t>(j)] <= params_.centreSpacing * rho)
                     covered[static_cast<size_t>(index[static_cast<size_t>(j)])] = 1;
@@ -326,48 +373,56 @@ void RbfPartitionOfUnity::compute(const PointCloud& source, const PointCloud& ta
     }
 
     PHASE("centres")
-    // 2. Targets within each patch radius; a patch of its own for a target in none.
-    std::vector<Cover> cover;
-    cover.reserve(static_cast<size_t>(nt) * 4);
+    // 2. Targets inside each patch radius; a patch of its own (centred at it, its k nearest
+    // source points) for a target inside none.
+    CoverPairs pairs;
     std::vector<std::int32_t> count(static_cast<size_t>(nt), 0);
     {
-        const KdTree targetTree(t);
+        const KdTree targetTree(target);
         PHASE("target tree")
         std::vector<std::pair<Eigen::Index, double>> found;
+        const auto cover = [&](Eigen::Index p) {
+            targetTree.withinRadius(patches.centreOf(p), patches.radius[static_cast<size_t>(p)],
+                                    found);
+            for (const auto& hit : found)
+                if (patches.weight(p, target.row(hit.first).data()) > 0.0)
+                {
+                    pairs.push(static_cast<std::int32_t>(hit.first), static_cast<std::int32_t>(p));
+                    ++count[static_cast<size_t>(hit.first)];
+                }
+        };
         for (Eigen::Index p = 0; p < patches.size(); ++p)
-            addCover(targetTree, patches, p, found, cover, count);
+            cover(p);
         for (Eigen::Index i = 0; i < nt; ++i)
         {
             if (count[static_cast<size_t>(i)] > 0)
                 continue;
-            sourceTree.nearest(t.row(i).data(), k, index, distance);
-            // The target at the centre, its k nearest sources inside the radius.
-            const double rho = std::max(1.000001 * distance.back(), 1e-12 * std::max(size, 1.0));
-            patches.add(t.row(i).data(), rho, index);
-            addCover(targetTree, patches, patches.size() - 1, found, cover, count);
+            sourceTree.nearest(target.row(i).data(), k, index, distance);
+            const double rho = std::max(1.000001 * distance.back(), 1e-12 * size);
+            patches.add(target.row(i).data(), rho > 0.0 ? rho : 1.0, index);
+            cover(patches.size() - 1);
         }
     }
-    PHASE("cover")
     patchCount_ = patches.size();
-    meanPatchesPerTarget_ = double(cover.size()) / double(nt);
+    meanPatchesPerTarget_ = double(pairs.size()) / double(nt);
+    PHASE("cover")
 
     // Target-major cover lists (counting sort).
     std::vector<std::int64_t> coverStart(static_cast<size_t>(nt) + 1, 0);
     for (Eigen::Index i = 0; i < nt; ++i)
-        coverStart[static_cast<size_t>(i) + 1] = coverStart[static_cast<size_t>(i)] + count[static_cast<size_t>(i)];
-    std::vector<std::int32_t> coverPatch(cover.size());
-    std::vector<double> coverWeight(cover.size());
+        coverStart[static_cast<size_t>(i) + 1] =
+            coverStart[static_cast<size_t>(i)] + count[static_cast<size_t>(i)];
+    LargeArray<std::int32_t> coverPatch = makeLargeArray<std::int32_t>(size_t(pairs.size()));
     {
         std::vector<std::int64_t> next(coverStart.begin(), coverStart.end() - 1);
-        for (const Cover& c : cover)
-        {
-            const std::int64_t at = next[static_cast<size_t>(c.target)]++;
-            coverPatch[static_cast<size_t>(at)] = c.patch;
-            coverWeight[static_cast<size_t>(at)] = c.weight;
-        }
+        pairs.forEach([&](std::int32_t i, std::int32_t p)
+                      { coverPatch[static_cast<size_t>(next[static_cast<size_t>(i)]++)] = p; });
+        pairs = CoverPairs();
+        std::vector<std::int32_t>().swap(count);
     }
-    std::vector<Cover>().swap(cover);
-    std::vector<std::int32_t>().swap(count);
+    std::vector<std::int32_t> uses(static_cast<size_t>(patches.size()), 0);
+    for (std::int64_t c = 0; c < coverStart.back(); ++c)
+        ++uses[static_cast<size_t>(coverPatch[c])];
 
     PHASE("sort")
     // 3. Row lengths of H: the union of the covering patches' points.
@@ -376,9 +431,10 @@ void RbfPartitionOfUnity::compute(const PointCloud& source, const PointCloud& ta
     for (Eigen::Index i = 0; i < nt; ++i)
     {
         std::int64_t n = 0;
-        for (std::int64_t c = coverStart[static_cast<size_t>(i)]; c < coverStart[static_cast<size_t>(i) + 1]; ++c)
+        for (std::int64_t c = coverStart[static_cast<size_t>(i)];
+             c < coverStart[static_cast<size_t>(i) + 1]; ++c)
         {
-            const std::int32_t* members = patches.membersOf(coverPatch[static_cast<size_t>(c)]);
+            const std::int32_t* members = patches.membersOf(coverPatch[c]);
             for (int j = 0; j < k; ++j)
                 if (mark[static_cast<size_t>(members[j])] != i)
                 {
@@ -389,35 +445,35 @@ void RbfPartitionOfUnity::compute(const PointCloud& source, const PointCloud& ta
         rowStart_[static_cast<size_t>(i) + 1] = rowStart_[static_cast<size_t>(i)] + n;
     }
     nonZeros_ = rowStart_.back();
-    column_.reset(new std::int32_t[static_cast<size_t>(nonZeros_)]);
-    value_.reset(new double[static_cast<size_t>(nonZeros_)]);
-    if (std::getenv("PRETOUCH")) { std::fill(value_.get(), value_.get() + nonZeros_, 0.0); std::fill(column_.get(), column_.get() + nonZeros_, 0); }
-    PHASE("alloc")
+    column_ = makeLargeArray<std::int32_t>(static_cast<size_t>(nonZeros_));
+    value_ = makeLargeArray<double>(static_cast<size_t>(nonZeros_));
     std::fill(mark.begin(), mark.end(), -1);
 
     PHASE("count")
     // 4. Rows of H, targets in Morton order so that the patches they need are recent: each
-    // patch's Lagrange operator is computed on first use and its block recycled after its last.
+    // patch's local operator is computed on first use and its block recycled after its last.
     const Eigen::Index stride = Eigen::Index(k) * (k + 7);
-    std::vector<std::int32_t> uses(static_cast<size_t>(patches.size()), 0), block(static_cast<size_t>(patches.size()), -1);
-    for (const std::int32_t p : coverPatch)
-        ++uses[static_cast<size_t>(p)];
+    std::vector<std::int32_t> block(static_cast<size_t>(patches.size()), -1);
     std::vector<char> rank(static_cast<size_t>(patches.size()), 4);
     std::vector<double> pool;
     std::vector<std::int32_t> freeBlocks;
     LocalSolver solver(k);
-    std::vector<double> e(static_cast<size_t>(k) + 4), lagrangeRow(static_cast<size_t>(k));
-    double solveTime = 0;
-    for (const Eigen::Index i : mortonOrder(t))
+    std::vector<double> e(static_cast<size_t>(k) + 4), lagrangeRow(static_cast<size_t>(k)),
+        weights;
+    for (const std::int32_t i : mortonOrder(target))
     {
+        const double* x = target.row(i).data();
+        const std::int64_t coverBegin = coverStart[static_cast<size_t>(i)];
+        const std::int64_t coverEnd = coverStart[static_cast<size_t>(i) + 1];
+        weights.resize(static_cast<size_t>(coverEnd - coverBegin));
         double total = 0.0;
-        for (std::int64_t c = coverStart[static_cast<size_t>(i)]; c < coverStart[static_cast<size_t>(i) + 1]; ++c)
-            total += coverWeight[static_cast<size_t>(c)];
+        for (std::int64_t c = coverBegin; c < coverEnd; ++c)
+            total += weights[static_cast<size_t>(c - coverBegin)] = patches.weight(coverPatch[c], x);
         const std::int64_t rowBegin = rowStart_[static_cast<size_t>(i)];
         std::int64_t end = rowBegin;
-        for (std::int64_t c = coverStart[static_cast<size_t>(i)]; c < coverStart[static_cast<size_t>(i) + 1]; ++c)
+        for (std::int64_t c = coverBegin; c < coverEnd; ++c)
         {
-            const Eigen::Index p = coverPatch[static_cast<size_t>(c)];
+            const Eigen::Index p = coverPatch[c];
             std::int32_t& b = block[static_cast<size_t>(p)];
             if (b < 0)
             {
@@ -431,57 +487,54 @@ void RbfPartitionOfUnity::compute(const PointCloud& source, const PointCloud& ta
                     b = freeBlocks.back();
                     freeBlocks.pop_back();
                 }
-                const double q0 = fsiCpu();
                 rank[static_cast<size_t>(p)] = static_cast<char>(
-                    solver.solve(s, patches, p, duplicate2, source, pool.data() + b * stride));
-                solveTime += fsiCpu() - q0;
+                    solver.solve(source, patches, p, duplicate2, pool.data() + b * stride));
             }
             const double* centre = patches.centreOf(p);
             const double scale = 1.0 / patches.radius[static_cast<size_t>(p)];
             const std::int32_t* members = patches.membersOf(p);
             const double* m = pool.data() + b * stride;
             const double* local = m + k * (k + 4);
-            const double x0 = (t(i, 0) - centre[0]) * scale, x1 = (t(i, 1) - centre[1]) * scale,
-                         x2 = (t(i, 2) - centre[2]) * scale;
+            const double x0 = (x[0] - centre[0]) * scale, x1 = (x[1] - centre[1]) * scale,
+                         x2 = (x[2] - centre[2]) * scale;
             for (int j = 0; j < k; ++j)
             {
                 const double d0 = x0 - local[j], d1 = x1 - local[k + j], d2 = x2 - local[2 * k + j];
-                e[j] = kernel(d0 * d0 + d1 * d1 + d2 * d2);
+                e[static_cast<size_t>(j)] = kernel(d0 * d0 + d1 * d1 + d2 * d2);
             }
-            e[k] = 1.0;
-            e[k + 1] = x0;
-            e[k + 2] = x1;
-            e[k + 3] = x2;
+            e[static_cast<size_t>(k)] = 1.0;
+            e[static_cast<size_t>(k) + 1] = x0;
+            e[static_cast<size_t>(k) + 2] = x1;
+            e[static_cast<size_t>(k) + 3] = x2;
             std::fill(lagrangeRow.begin(), lagrangeRow.end(), 0.0);
             for (int a = 0; a < k + 4; ++a)
             {
-                const double ea = e[a];
+                const double ea = e[static_cast<size_t>(a)];
                 const double* column = m + a * k;
                 for (int j = 0; j < k; ++j)
-                    lagrangeRow[j] += column[j] * ea;
+                    lagrangeRow[static_cast<size_t>(j)] += column[j] * ea;
             }
             if (--uses[static_cast<size_t>(p)] == 0)
                 freeBlocks.push_back(b);
-            const double w = coverWeight[static_cast<size_t>(c)] / total;
+            const double w = weights[static_cast<size_t>(c - coverBegin)] / total;
             for (int j = 0; j < k; ++j)
             {
                 const size_t g = static_cast<size_t>(members[j]);
+                const double v = w * lagrangeRow[static_cast<size_t>(j)];
                 if (mark[g] != i)
                 {
-                    mark[g] = static_cast<std::int32_t>(i);
+                    mark[g] = i;
                     slot[g] = static_cast<std::int32_t>(end - rowBegin);
-                    column_[static_cast<size_t>(end)] = members[j];
-                    value_[static_cast<size_t>(end)] = w * lagrangeRow[j];
+                    column_[end] = members[j];
+                    value_[end] = v;
                     ++end;
                 }
                 else
-                    value_[static_cast<size_t>(rowBegin + slot[g])] += w * lagrangeRow[j];
+                    value_[rowBegin + slot[g]] += v;
             }
         }
     }
     PHASE("rows")
-    if (std::getenv("FSI_PU_PROFILE")) std::fprintf(stderr, "  solves %.3f\n", solveTime);
-    if (std::getenv("FSI_PU_PROFILE")) std::fprintf(stderr, "  pool blocks %zu of %ld patches\n", pool.size() / size_t(stride), long(patches.size()));
 
     // 5. Degenerate patches: correction D = Q_t - H Q on the targets they cover.
     corrected_.clear();
@@ -490,14 +543,18 @@ void RbfPartitionOfUnity::compute(const PointCloud& source, const PointCloud& ta
     degeneratePatches_ = 0;
     if (*std::min_element(rank.begin(), rank.end()) < 4)
     {
-        const detail::LinearPolynomial polynomial(s, t);
-        for (const char r : rank)
-            degeneratePatches_ += r < polynomial.rank();
+        const detail::Normalisation normalisation(source);
+        const detail::LinearPolynomial polynomial(normalisation.apply(source),
+                                                  normalisation.apply(target));
+        const auto degenerate = [&](Eigen::Index p) { return rank[static_cast<size_t>(p)] < polynomial.rank(); };
+        for (Eigen::Index p = 0; p < patches.size(); ++p)
+            degeneratePatches_ += degenerate(p);
         if (degeneratePatches_ > 0)
         {
             for (Eigen::Index i = 0; i < nt; ++i)
-                for (std::int64_t c = coverStart[static_cast<size_t>(i)]; c < coverStart[static_cast<size_t>(i) + 1]; ++c)
-                    if (rank[static_cast<size_t>(coverPatch[static_cast<size_t>(c)])] < polynomial.rank())
+                for (std::int64_t c = coverStart[static_cast<size_t>(i)];
+                     c < coverStart[static_cast<size_t>(i) + 1]; ++c)
+                    if (degenerate(coverPatch[c]))
                     {
                         corrected_.push_back(i);
                         break;
@@ -508,14 +565,15 @@ void RbfPartitionOfUnity::compute(const PointCloud& source, const PointCloud& ta
             {
                 const Eigen::Index i = corrected_[n];
                 Eigen::RowVectorXd row = polynomial.targetBasis.row(i);
-                for (std::int64_t a = rowStart_[static_cast<size_t>(i)]; a < rowStart_[static_cast<size_t>(i) + 1]; ++a)
-                    row -= value_[static_cast<size_t>(a)] * sourceBasis_.row(column_[static_cast<size_t>(a)]);
+                for (std::int64_t a = rowStart_[static_cast<size_t>(i)];
+                     a < rowStart_[static_cast<size_t>(i) + 1]; ++a)
+                    row -= value_[a] * sourceBasis_.row(column_[a]);
                 correction_.row(static_cast<Eigen::Index>(n)) = row;
             }
         }
     }
     PHASE("degenerate")
-    if (std::getenv("FSI_PU_PROFILE")) std::fprintf(stderr, "  patches %ld per-target %.2f nnz/row %.1f\n", long(patchCount_), meanPatchesPerTarget_, double(nonZeros_)/nt);
+    if (std::getenv("FSI_PU_PROFILE")) std::fprintf(stderr, "  patches %ld per-target %.2f nnz/row %.1f pool %zu\n", long(patchCount_), meanPatchesPerTarget_, double(nonZeros_)/nt, pool.size()/size_t(stride));
     sourceSize_ = ns;
     targetSize_ = nt;
 }
