@@ -56,7 +56,7 @@ void PartitionOfUnityParameters::validate() const
                                  std::to_string(pointsPerPatch) + "); e.g. 20");
     if (!(centreSpacing > 0.0 && centreSpacing < 1.0))
         throw std::runtime_error("mapping.rbf-pu.centre_spacing must be in (0, 1) (got " +
-                                 number(centreSpacing) + "); e.g. 0.7");
+                                 number(centreSpacing) + "); e.g. 0.85");
 }
 
 void MappingParameters::validate() const

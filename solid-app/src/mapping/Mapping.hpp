@@ -80,14 +80,16 @@ struct ThinPlateParameters
     void validate() const;
 };
 
-// Coefficients of rbf-pu (partition of unity): local RBF problems on overlapping patches of the
-// source cloud, blended by smooth weights (RbfPartitionOfUnity.hpp). Set-up O(N k^2).
+// Coefficients of rbf-pu, partition of unity: local cubic RBF + linear polynomial on
+// overlapping patches of k nearest source points, blended by smooth weights
+// (RbfPartitionOfUnity.hpp). Set-up and apply O(N), for any interface size.
 struct PartitionOfUnityParameters
 {
-    long pointsPerPatch = 20;   // k: source points of each local problem, >= 4 (dense k x k)
-    double centreSpacing = 0.7; // patch centres ~ this fraction of a patch radius apart, (0, 1);
-                                // smaller = more overlap (more patches per point, slower)
-    void validate() const;      // throws: points_per_patch must be in [4, 200], ...
+    long pointsPerPatch = 20;    // k: source points of each local problem, in [4, 200]; more =
+                                 // a little more accurate, cost ~ k^2
+    double centreSpacing = 0.85; // in (0, 1): every target lies within this fraction of a patch
+                                 // radius from a patch centre; smaller = more overlap, slower
+    void validate() const;       // throws one line naming mapping.rbf-pu.<key>
 };
 
 struct MappingParameters

@@ -20,9 +20,6 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
-#include <ctime>
-static double fsiCpu() { timespec ts{}; clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts); return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec); }
-#define PHASE(name) if (std::getenv("FSI_PU_PROFILE")) { std::fprintf(stderr, "  %-12s %.3f\n", name, fsiCpu() - phase0); } phase0 = fsiCpu();
 
 namespace fsi::mapping
 {
@@ -326,7 +323,6 @@ void multiplyTransposedFixed(const std::vector<std::int64_t>& rowStart,
 void RbfPartitionOfUnity::compute(const PointCloud& source, const PointCloud& target)
 {
     params_.validate();
-    double phase0 = fsiCpu();
     const Eigen::Index ns = source.rows(), nt = target.rows();
     if (ns == 0 || nt == 0)
         throw std::runtime_error("mapping rbf-pu: empty interface point cloud (source " +
@@ -340,74 +336,54 @@ void RbfPartitionOfUnity::compute(const PointCloud& source, const PointCloud& ta
     const KdTree sourceTree(source);
     const int k = static_cast<int>(std::min<Eigen::Index>(params_.pointsPerPatch, ns));
 
-    PHASE("tree")
-    // 1. Patches: every source point within centre_spacing * rho of a centre.
+    // 1. Patches and cover: along a Morton sweep of the targets, a target not yet within
+    // centre_spacing * rho of a patch centre becomes the centre of a new patch (its k nearest
+    // source points); every target inside a patch radius is covered by that patch.
     Patches patches;
     patches.k = k;
     std::vector<Eigen::Index> index;
     std::vector<double> distance;
-    {
-        std::vector<char> covered(static_cast<size_t>(ns), 0);
-        for (const std::int32_t i : mortonOrder(source))
-        {
-            if (covered[static_cast<size_t>(i)])
-                continue;
-            sourceTree.nearest(source.row(i).data(), k, index, distance);
-            double rho = distance.back();
-            if (!(rho > 0.0))
-            {
-                if (k > 1)
-                    throw std::runtime_error("mapping rbf-pu: source points " +
-                                             std::to_string(index[0]) + " and " +
-                                             std::to_string(index[1]) + " coincide at " +
-                                             pointText(source, i) +
-                                             "; merge duplicate wetted nodes or use type "
-                                             "nearest-neighbour");
-                rho = 1.0; // a single source point: any radius
-            }
-            patches.add(source.row(i).data(), rho, index);
-            for (int j = 0; j < k; ++j)
-                if (distance[static_cast<size_t>(j)] <= params_.centreSpacing * rho)
-                    covered[static_cast<size_t>(index[static_cast<size_t>(j)])] = 1;
-        }
-    }
-
-    PHASE("centres")
-    // 2. Targets inside each patch radius; a patch of its own (centred at it, its k nearest
-    // source points) for a target inside none.
     CoverPairs pairs;
     std::vector<std::int32_t> count(static_cast<size_t>(nt), 0);
+    const std::vector<std::int32_t> targetOrder = mortonOrder(target);
     {
         const KdTree targetTree(target);
-        PHASE("target tree")
+        std::vector<char> interior(static_cast<size_t>(nt), 0);
         std::vector<std::pair<Eigen::Index, double>> found;
-        const auto cover = [&](Eigen::Index p) {
-            targetTree.withinRadius(patches.centreOf(p), patches.radius[static_cast<size_t>(p)],
-                                    found);
-            for (const auto& hit : found)
-                if (patches.weight(p, target.row(hit.first).data()) > 0.0)
-                {
-                    pairs.push(static_cast<std::int32_t>(hit.first), static_cast<std::int32_t>(p));
-                    ++count[static_cast<size_t>(hit.first)];
-                }
-        };
-        for (Eigen::Index p = 0; p < patches.size(); ++p)
-            cover(p);
-        for (Eigen::Index i = 0; i < nt; ++i)
+        for (const std::int32_t i : targetOrder)
         {
-            if (count[static_cast<size_t>(i)] > 0)
+            if (interior[static_cast<size_t>(i)])
                 continue;
-            sourceTree.nearest(target.row(i).data(), k, index, distance);
-            const double rho = std::max(1.000001 * distance.back(), 1e-12 * size);
-            patches.add(target.row(i).data(), rho > 0.0 ? rho : 1.0, index);
-            cover(patches.size() - 1);
+            const double* x = target.row(i).data();
+            sourceTree.nearest(x, k, index, distance);
+            const double rho = 1.000001 * distance.back(); // every member inside
+            if (!(rho > 0.0) && k > 1)
+                throw std::runtime_error("mapping rbf-pu: source points " +
+                                         std::to_string(index[0]) + " and " +
+                                         std::to_string(index[1]) + " coincide at " +
+                                         pointText(source, index[0]) +
+                                         "; merge duplicate wetted nodes or use type "
+                                         "nearest-neighbour");
+            patches.add(x, rho > 0.0 ? rho : 1.0, index); // 1 m: a target on the only source
+            const Eigen::Index p = patches.size() - 1;
+            const double radius = patches.radius[static_cast<size_t>(p)];
+            targetTree.withinRadius(x, radius, found);
+            const double inner2 = std::pow(params_.centreSpacing * radius, 2);
+            for (const auto& [j, d2] : found)
+                if (patches.weight(p, target.row(j).data()) > 0.0)
+                {
+                    pairs.push(static_cast<std::int32_t>(j), static_cast<std::int32_t>(p));
+                    ++count[static_cast<size_t>(j)];
+                    if (d2 <= inner2)
+                        interior[static_cast<size_t>(j)] = 1;
+                }
+            interior[static_cast<size_t>(i)] = 1;
         }
     }
     patchCount_ = patches.size();
     meanPatchesPerTarget_ = double(pairs.size()) / double(nt);
-    PHASE("cover")
 
-    // Target-major cover lists (counting sort).
+    // 2. Target-major cover lists (counting sort) and the number of uses of each patch.
     std::vector<std::int64_t> coverStart(static_cast<size_t>(nt) + 1, 0);
     for (Eigen::Index i = 0; i < nt; ++i)
         coverStart[static_cast<size_t>(i) + 1] =
@@ -424,7 +400,6 @@ void RbfPartitionOfUnity::compute(const PointCloud& source, const PointCloud& ta
     for (std::int64_t c = 0; c < coverStart.back(); ++c)
         ++uses[static_cast<size_t>(coverPatch[c])];
 
-    PHASE("sort")
     // 3. Row lengths of H: the union of the covering patches' points.
     std::vector<std::int32_t> mark(static_cast<size_t>(ns), -1), slot(static_cast<size_t>(ns), 0);
     rowStart_.assign(static_cast<size_t>(nt) + 1, 0);
@@ -449,7 +424,6 @@ void RbfPartitionOfUnity::compute(const PointCloud& source, const PointCloud& ta
     value_ = makeLargeArray<double>(static_cast<size_t>(nonZeros_));
     std::fill(mark.begin(), mark.end(), -1);
 
-    PHASE("count")
     // 4. Rows of H, targets in Morton order so that the patches they need are recent: each
     // patch's local operator is computed on first use and its block recycled after its last.
     const Eigen::Index stride = Eigen::Index(k) * (k + 7);
@@ -460,7 +434,7 @@ void RbfPartitionOfUnity::compute(const PointCloud& source, const PointCloud& ta
     LocalSolver solver(k);
     std::vector<double> e(static_cast<size_t>(k) + 4), lagrangeRow(static_cast<size_t>(k)),
         weights;
-    for (const std::int32_t i : mortonOrder(target))
+    for (const std::int32_t i : targetOrder)
     {
         const double* x = target.row(i).data();
         const std::int64_t coverBegin = coverStart[static_cast<size_t>(i)];
@@ -534,7 +508,6 @@ void RbfPartitionOfUnity::compute(const PointCloud& source, const PointCloud& ta
             }
         }
     }
-    PHASE("rows")
 
     // 5. Degenerate patches: correction D = Q_t - H Q on the targets they cover.
     corrected_.clear();
@@ -546,7 +519,8 @@ void RbfPartitionOfUnity::compute(const PointCloud& source, const PointCloud& ta
         const detail::Normalisation normalisation(source);
         const detail::LinearPolynomial polynomial(normalisation.apply(source),
                                                   normalisation.apply(target));
-        const auto degenerate = [&](Eigen::Index p) { return rank[static_cast<size_t>(p)] < polynomial.rank(); };
+        const auto degenerate = [&](Eigen::Index p)
+        { return rank[static_cast<size_t>(p)] < polynomial.rank(); };
         for (Eigen::Index p = 0; p < patches.size(); ++p)
             degeneratePatches_ += degenerate(p);
         if (degeneratePatches_ > 0)
@@ -572,8 +546,6 @@ void RbfPartitionOfUnity::compute(const PointCloud& source, const PointCloud& ta
             }
         }
     }
-    PHASE("degenerate")
-    if (std::getenv("FSI_PU_PROFILE")) std::fprintf(stderr, "  patches %ld per-target %.2f nnz/row %.1f pool %zu\n", long(patchCount_), meanPatchesPerTarget_, double(nonZeros_)/nt, pool.size()/size_t(stride));
     sourceSize_ = ns;
     targetSize_ = nt;
 }

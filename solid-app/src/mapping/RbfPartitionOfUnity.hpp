@@ -1,27 +1,31 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// rbf-pu: partition-of-unity RBF for large interfaces (set-up and apply linear in N).
-// The source cloud is covered by overlapping patches; each patch p is the k nearest source
-// points of its centre c_p (k = points_per_patch), its radius rho_p the distance to the k-th.
-// Centres are picked greedily along a Morton (Z-order) sweep of the sources: a source becomes a
-// centre unless it lies within centre_spacing * rho of an earlier centre.
-// On each patch a local interpolant, polyharmonic cubic phi(r) = r^3 plus the linear polynomial
-// (in coordinates centred at c_p and scaled by rho_p), solved as the small dense saddle-point
-// system [Phi Q; Q^T 0] (Q: orthonormal basis of the linear functions the patch resolves).
-// The patches are blended with Wendland C2 weights w_p(x) = psi(|x - c_p| / rho_p),
-// psi(r) = (1 - r)^4_+ (4 r + 1), normalised to sum 1 at each target point:
-//   H = sum_p diag(w_p / sum_q w_q) L_p,      L_p: Lagrange matrix of patch p (targets x k)
-// stored as one sparse matrix (CSR, the union of the covering patches' points per row).
-// Consistent: target = H source. Conservative: source = H^T target (the same matrix).
+// rbf-pu: partition-of-unity RBF for large interfaces; set-up and apply linear in N.
+// Patches: along a Morton (Z-order) sweep of the target points, a target not yet within
+// centre_spacing * rho of a patch centre becomes the centre c_p of a new patch p, whose points
+// are its k nearest source points (k = points_per_patch) and whose radius rho_p is the distance
+// to the k-th (times 1 + 1e-6). So every target lies within centre_spacing * rho of some centre,
+// and patches follow the local source spacing (graded meshes need no tuning).
+// On each patch a local interpolant: polyharmonic cubic phi(r) = r^3 plus the linear polynomial,
+// in coordinates centred at c_p and scaled by rho_p, from the small dense saddle-point system
+// [Phi Q; Q^T 0] (Q: orthonormal basis of the linear functions the patch points resolve, from
+// their principal axes). The patches are blended with Wendland C2 weights
+// w_p(x) = psi(|x - c_p| / rho_p), psi(r) = (1 - r)^4_+ (4 r + 1), normalised at each target:
+//   H = sum_p diag(w_p / sum_q w_q) L_p        (L_p: Lagrange matrix of patch p, targets x k)
+// stored as one sparse matrix (CSR; a row holds the union of its covering patches' points,
+// about 2k). Consistent: target = H source. Conservative: source = H^T target (same matrix).
 // Every local interpolant reproduces constants and linear functions and the weights sum to 1,
 // so H reproduces them exactly: total force and total moment are conserved to round-off.
-// A patch whose points are coplanar (or collinear) resolves fewer linear functions than the
-// whole interface; the targets it covers get the rank-r correction
-//   H += D Q^T,   D = Q_t - H Q   (Q, Q_t: the global linear basis at sources and targets)
-// so that linear fields stay exact there too (D is zero where no patch is degenerate).
-// A target covered by no patch (farther than a patch radius from every centre) gets a patch of
-// its own around its nearest source point, enlarged to reach it (extrapolation).
-// Apply allocates nothing after the first call with a given column count.
+// A patch whose points are coplanar or collinear resolves fewer linear functions than the
+// whole interface (a flat tip cap on a 3-D foil); the targets it covers get the rank-r
+// correction  H += D Q^T,  D = Q_t - H Q  (Q, Q_t: global linear basis at sources and targets),
+// so linear fields stay exact there too; D is empty when no patch is degenerate.
+// A source point in no patch (far from every target) has a zero column: it neither influences
+// the targets nor receives force.
+// Set-up cost ~ (N_s + N_t) k^2 with a small constant: the local systems are solved when first
+// needed and forgotten after their last target (working memory O(sqrt N) patches); memory is
+// ~12 bytes per non-zero of H (about 2k per target). Apply: one pass over H, no allocation after
+// the first call with a given column count.
 #pragma once
 
 #include "mapping/Mapping.hpp"
