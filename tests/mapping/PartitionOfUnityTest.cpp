@@ -88,8 +88,8 @@ TEST(PartitionOfUnity, CoplanarPatchesKeepLinearFieldsExactOffThePlane)
     const auto mapping = buildMapping(partitionOfUnity(), s, t);
     const auto& pu = dynamic_cast<const RbfPartitionOfUnity&>(*mapping);
     std::printf("corner: %ld -> %ld points, %ld patches, %ld coplanar, %ld corrected targets\n",
-                long(s.rows()), long(t.rows()), long(pu.patchCount()),
-                long(pu.degeneratePatches()), long(pu.correctedTargets()));
+                long(s.rows()), long(t.rows()), long(pu.patchCount()), long(pu.degeneratePatches()),
+                long(pu.correctedTargets()));
     EXPECT_GT(pu.degeneratePatches(), 0);
     EXPECT_GT(pu.correctedTargets(), 0);
     Values mapped(t.rows(), 3);

@@ -174,11 +174,12 @@ private:
 };
 
 // Local problem of one patch. Fills M (k x (k + 4), column-major) such that the patch's
-// interpolant at x is sum_j L_j(x) f_j with L(x) = M [phi(|x^ - x^_j|^2); 1; x^],
-// x^ = (x - c) / rho, followed by the member coordinates x^_j (3 x k, axis by axis). Returns the number of linear functions the patch resolves (1..4).
-// Polynomial basis: the constant and the principal axes of the patch points (centroid m,
-// covariance eigenpairs (lambda_i, v_i)), q_i(x) = (x^ - m) . v_i / sqrt(lambda_i): orthonormal
-// at the patch points; axes with sqrt(lambda_i) < polynomialDrop sqrt(lambda_max) are dropped.
+// interpolant at x is sum_j L_j(x) f_j with L(x) = M [phi(|x^ - x^_j|); 1; x^],
+// x^ = (x - c) / rho, followed by the member coordinates x^_j (3 x k, axis by axis). Returns the
+// number of linear functions the patch resolves (1..4). Polynomial basis: the constant and the
+// principal axes of the patch points (centroid m, covariance eigenpairs (lambda_i, v_i)), q_i(x) =
+// (x^ - m) . v_i / sqrt(lambda_i): orthonormal at the patch points; axes with sqrt(lambda_i) <
+// polynomialDrop sqrt(lambda_max) are dropped.
 class LocalSolver
 {
 public:
@@ -291,9 +292,9 @@ void multiplyFixed(const std::vector<std::int64_t>& rowStart, const std::int32_t
 
 // y += H^T x.
 template <int Columns>
-void multiplyTransposedFixed(const std::vector<std::int64_t>& rowStart,
-                             const std::int32_t* column, const double* value,
-                             const Eigen::Ref<const Values>& x, Eigen::Ref<Values> y)
+void multiplyTransposedFixed(const std::vector<std::int64_t>& rowStart, const std::int32_t* column,
+                             const double* value, const Eigen::Ref<const Values>& x,
+                             Eigen::Ref<Values> y)
 {
     const double* in[Columns];
     double* out[Columns];
@@ -358,12 +359,11 @@ void RbfPartitionOfUnity::compute(const PointCloud& source, const PointCloud& ta
             sourceTree.nearest(x, k, index, distance);
             const double rho = 1.000001 * distance.back(); // every member inside
             if (!(rho > 0.0) && k > 1)
-                throw std::runtime_error("mapping rbf-pu: source points " +
-                                         std::to_string(index[0]) + " and " +
-                                         std::to_string(index[1]) + " coincide at " +
-                                         pointText(source, index[0]) +
-                                         "; merge duplicate wetted nodes or use type "
-                                         "nearest-neighbour");
+                throw std::runtime_error(
+                    "mapping rbf-pu: source points " + std::to_string(index[0]) + " and " +
+                    std::to_string(index[1]) + " coincide at " + pointText(source, index[0]) +
+                    "; merge duplicate wetted nodes or use type "
+                    "nearest-neighbour");
             patches.add(x, rho > 0.0 ? rho : 1.0, index); // 1 m: a target on the only source
             const Eigen::Index p = patches.size() - 1;
             const double radius = patches.radius[static_cast<size_t>(p)];
@@ -432,8 +432,7 @@ void RbfPartitionOfUnity::compute(const PointCloud& source, const PointCloud& ta
     std::vector<double> pool;
     std::vector<std::int32_t> freeBlocks;
     LocalSolver solver(k);
-    std::vector<double> e(static_cast<size_t>(k) + 4), lagrangeRow(static_cast<size_t>(k)),
-        weights;
+    std::vector<double> e(static_cast<size_t>(k) + 4), lagrangeRow(static_cast<size_t>(k)), weights;
     for (const std::int32_t i : targetOrder)
     {
         const double* x = target.row(i).data();
@@ -442,7 +441,8 @@ void RbfPartitionOfUnity::compute(const PointCloud& source, const PointCloud& ta
         weights.resize(static_cast<size_t>(coverEnd - coverBegin));
         double total = 0.0;
         for (std::int64_t c = coverBegin; c < coverEnd; ++c)
-            total += weights[static_cast<size_t>(c - coverBegin)] = patches.weight(coverPatch[c], x);
+            total += weights[static_cast<size_t>(c - coverBegin)] =
+                patches.weight(coverPatch[c], x);
         const std::int64_t rowBegin = rowStart_[static_cast<size_t>(i)];
         std::int64_t end = rowBegin;
         for (std::int64_t c = coverBegin; c < coverEnd; ++c)
@@ -558,7 +558,8 @@ void RbfPartitionOfUnity::applyConsistent(const Eigen::Ref<const Values>& source
         multiplyFixed<3>(rowStart_, column_.get(), value_.get(), sourceValues, targetValues);
     else
         for (Eigen::Index c = 0; c < columns; ++c)
-            multiplyFixed<1>(rowStart_, column_.get(), value_.get(), sourceValues.col(c), targetValues.col(c));
+            multiplyFixed<1>(rowStart_, column_.get(), value_.get(), sourceValues.col(c),
+                             targetValues.col(c));
     if (corrected_.empty())
         return;
     if (projected_.rows() != sourceBasis_.cols() || projected_.cols() != columns)
@@ -577,7 +578,8 @@ void RbfPartitionOfUnity::applyConservative(const Eigen::Ref<const Values>& targ
     const Eigen::Index columns = targetValues.cols();
     sourceValues.setZero();
     if (columns == 3)
-        multiplyTransposedFixed<3>(rowStart_, column_.get(), value_.get(), targetValues, sourceValues);
+        multiplyTransposedFixed<3>(rowStart_, column_.get(), value_.get(), targetValues,
+                                   sourceValues);
     else
         for (Eigen::Index c = 0; c < columns; ++c)
             multiplyTransposedFixed<1>(rowStart_, column_.get(), value_.get(), targetValues.col(c),

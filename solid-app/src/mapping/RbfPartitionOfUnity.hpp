@@ -77,7 +77,8 @@ public:
 
 private:
     PartitionOfUnityParameters params_;
-    // H in compressed rows: row t holds value_[i], column_[i] for i in [rowStart_[t], rowStart_[t+1]).
+    // H in compressed rows: row t holds value_[i], column_[i] for i in [rowStart_[t],
+    // rowStart_[t+1]).
     std::vector<std::int64_t> rowStart_;
     detail::LargeArray<std::int32_t> column_;
     detail::LargeArray<double> value_;
