@@ -17,7 +17,8 @@
 // One line per kind and size:
 //   mapping-bench: kind=K n=N setup_s=X apply_s=X rss_mb=X max_rel_err=X <more fields>
 // setup_s: buildMapping (checks, search trees, local/global solves), process CPU seconds;
-// apply_s: one consistent apply of a 3-component field, CPU seconds per call (mean of repeats);
+// apply_s: one consistent apply of a 3-component field, CPU seconds per call (mean of repeats
+// after a first call that sizes the workspace);
 // rss_mb: peak resident set of the case minus the resident set just before set-up (point
 // clouds and fields excluded; the set-up transient included), MiB; each case runs in a forked
 // child so cases do not share a heap. max_rel_err: max |error| / max |f| of the smooth field
@@ -153,8 +154,11 @@ struct Timing
     double cpu = 0, wall = 0; // per call [s]
 };
 
+// Mean time of repeated calls (at least 0.3 s CPU, at most 200 calls) after one untimed call,
+// which sizes the mapping's workspace.
 template <class F> Timing timePerCall(F&& call)
 {
+    call();
     int calls = 0;
     const double cpu0 = cpuSeconds(), wall0 = wallSeconds();
     do

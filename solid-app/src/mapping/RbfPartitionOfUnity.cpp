@@ -319,6 +319,56 @@ void multiplyTransposedFixed(const std::vector<std::int64_t>& rowStart, const st
         }
     }
 }
+// y = H x for three columns, x interleaved (x_0 y_0 z_0 x_1 ...: a source point's values share
+// a cache line, which matters once they no longer fit in the cache).
+void multiplyInterleaved(const std::vector<std::int64_t>& rowStart, const std::int32_t* column,
+                         const double* value, const double* x, Eigen::Ref<Values> y)
+{
+    double* out0 = y.col(0).data();
+    double* out1 = y.col(1).data();
+    double* out2 = y.col(2).data();
+    const Eigen::Index rows = static_cast<Eigen::Index>(rowStart.size()) - 1;
+    for (Eigen::Index t = 0; t < rows; ++t)
+    {
+        double sum0 = 0.0, sum1 = 0.0, sum2 = 0.0;
+        for (std::int64_t i = rowStart[static_cast<size_t>(t)];
+             i < rowStart[static_cast<size_t>(t) + 1]; ++i)
+        {
+            const double v = value[i];
+            const double* xj = x + 3 * std::int64_t(column[i]);
+            sum0 += v * xj[0];
+            sum1 += v * xj[1];
+            sum2 += v * xj[2];
+        }
+        out0[t] = sum0;
+        out1[t] = sum1;
+        out2[t] = sum2;
+    }
+}
+
+// y += H^T x for three columns, y interleaved.
+void multiplyTransposedInterleaved(const std::vector<std::int64_t>& rowStart,
+                                   const std::int32_t* column, const double* value,
+                                   const Eigen::Ref<const Values>& x, double* y)
+{
+    const double* in0 = x.col(0).data();
+    const double* in1 = x.col(1).data();
+    const double* in2 = x.col(2).data();
+    const Eigen::Index rows = static_cast<Eigen::Index>(rowStart.size()) - 1;
+    for (Eigen::Index t = 0; t < rows; ++t)
+    {
+        const double g0 = in0[t], g1 = in1[t], g2 = in2[t];
+        for (std::int64_t i = rowStart[static_cast<size_t>(t)];
+             i < rowStart[static_cast<size_t>(t) + 1]; ++i)
+        {
+            const double v = value[i];
+            double* yj = y + 3 * std::int64_t(column[i]);
+            yj[0] += v * g0;
+            yj[1] += v * g1;
+            yj[2] += v * g2;
+        }
+    }
+}
 } // namespace
 
 void RbfPartitionOfUnity::compute(const PointCloud& source, const PointCloud& target)
@@ -555,7 +605,13 @@ void RbfPartitionOfUnity::applyConsistent(const Eigen::Ref<const Values>& source
 {
     const Eigen::Index columns = sourceValues.cols();
     if (columns == 3)
-        multiplyFixed<3>(rowStart_, column_.get(), value_.get(), sourceValues, targetValues);
+    {
+        if (interleaved_.cols() != sourceSize_)
+            interleaved_.resize(3, sourceSize_);
+        interleaved_ = sourceValues.transpose();
+        multiplyInterleaved(rowStart_, column_.get(), value_.get(), interleaved_.data(),
+                            targetValues);
+    }
     else
         for (Eigen::Index c = 0; c < columns; ++c)
             multiplyFixed<1>(rowStart_, column_.get(), value_.get(), sourceValues.col(c),
@@ -576,14 +632,22 @@ void RbfPartitionOfUnity::applyConservative(const Eigen::Ref<const Values>& targ
                                             Eigen::Ref<Values> sourceValues) const
 {
     const Eigen::Index columns = targetValues.cols();
-    sourceValues.setZero();
     if (columns == 3)
-        multiplyTransposedFixed<3>(rowStart_, column_.get(), value_.get(), targetValues,
-                                   sourceValues);
+    {
+        if (interleaved_.cols() != sourceSize_)
+            interleaved_.resize(3, sourceSize_);
+        interleaved_.setZero();
+        multiplyTransposedInterleaved(rowStart_, column_.get(), value_.get(), targetValues,
+                                      interleaved_.data());
+        sourceValues = interleaved_.transpose();
+    }
     else
         for (Eigen::Index c = 0; c < columns; ++c)
+        {
+            sourceValues.col(c).setZero();
             multiplyTransposedFixed<1>(rowStart_, column_.get(), value_.get(), targetValues.col(c),
                                        sourceValues.col(c));
+        }
     if (corrected_.empty())
         return;
     if (projected_.rows() != sourceBasis_.cols() || projected_.cols() != columns)

@@ -88,7 +88,8 @@ private:
     Eigen::MatrixXd correction_, sourceBasis_;
     Eigen::Index patchCount_ = 0, degeneratePatches_ = 0;
     double meanPatchesPerTarget_ = 0.0;
-    mutable Eigen::MatrixXd projected_; // workspace, r x columns
+    mutable Eigen::MatrixXd projected_;                            // workspace, r x columns
+    mutable Eigen::Matrix<double, 3, Eigen::Dynamic> interleaved_; // workspace, 3 x N_s
 };
 
 } // namespace fsi::mapping
