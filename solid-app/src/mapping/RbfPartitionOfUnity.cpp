@@ -4,8 +4,8 @@
 #include "mapping/KdTree.hpp"
 #include "mapping/RbfSupport.hpp"
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
-#include <Eigen/LU>
 
 #ifdef __linux__
 #include <sys/mman.h>
@@ -219,9 +219,12 @@ public:
                 ++r;
             }
 
-        system_.setZero(k + r, k + r);
+        // Phi and the polynomial basis Q (k x r, orthonormal columns) at the patch points.
+        phi_.resize(k, k);
+        basis_.resize(k, r);
         for (int j = 0; j < k; ++j)
         {
+            phi_(j, j) = 0.0;
             for (int i = 0; i < j; ++i)
             {
                 const double d2 = (points_.row(i) - points_.row(j)).squaredNorm();
@@ -231,34 +234,48 @@ public:
                         std::to_string(members[j]) + " coincide at " +
                         pointText(source, members[i]) +
                         "; merge duplicate wetted nodes or use type nearest-neighbour");
-                system_(i, j) = system_(j, i) = kernel(d2);
+                phi_(i, j) = phi_(j, i) = kernel(d2);
             }
-            system_(j, k) = system_(k, j) = transform_(0, 0);
-            for (int i = 1; i < r; ++i)
-                system_(j, k + i) = system_(k + i, j) =
-                    transform_(0, i) + points_(j, 0) * transform_(1, i) +
-                    points_(j, 1) * transform_(2, i) + points_(j, 2) * transform_(3, i);
+            for (int i = 0; i < r; ++i)
+                basis_(j, i) = transform_(0, i) + points_(j, 0) * transform_(1, i) +
+                               points_(j, 1) * transform_(2, i) + points_(j, 2) * transform_(3, i);
         }
-        lu_.compute(system_);
-        if (!(lu_.rcond() > 1e-13))
+        // Inverse of the saddle-point matrix [Phi Q; Q^T 0] = [C E; E^T .] with, for P = I - Q Q^T,
+        //   C = (P Phi P + Q Q^T)^{-1} - Q Q^T,   E = Q - C Phi Q.
+        // P Phi P is positive definite on range(P) (phi = r^3 is conditionally positive definite
+        // of order 2), so B = P Phi P + Q Q^T is symmetric positive definite: Cholesky.
+        phiBasis_.noalias() = phi_ * basis_; // W = Phi Q
+        small_.noalias() = basis_.transpose() * phiBasis_;
+        small_.diagonal().array() += 1.0; // S + I, S = Q^T Phi Q
+        system_ = phi_;
+        system_.noalias() -= basis_ * phiBasis_.transpose();
+        system_.noalias() -= phiBasis_ * basis_.transpose();
+        product_.noalias() = basis_ * small_;
+        system_.noalias() += product_ * basis_.transpose();
+        llt_.compute(system_);
+        Eigen::Map<Eigen::MatrixXd> out(m, k, k + 4);
+        if (llt_.info() == Eigen::Success && !(llt_.rcond() < 1e-13))
+        {
+            out.leftCols(k).setIdentity();
+            llt_.solveInPlace(out.leftCols(k));
+            out.leftCols(k).noalias() -= basis_ * basis_.transpose();
+        }
+        else
             throw std::runtime_error("mapping rbf-pu: local system of the patch at " +
                                      pointText(source, members[0]) +
                                      " is singular; check for near-duplicate source points or "
                                      "raise mapping.rbf-pu.points_per_patch");
-        identity_.setIdentity(k + r, k);
-        inverse_.noalias() = lu_.solve(identity_); // (k + r) x k: A^{-1}, data columns
-        Eigen::Map<Eigen::MatrixXd> out(m, k, k + 4);
-        out.leftCols(k) = inverse_.topRows(k);
-        out.rightCols(4).noalias() =
-            inverse_.bottomRows(r).transpose() * transform_.leftCols(r).transpose();
+        product_ = basis_;
+        product_.noalias() -= out.leftCols(k) * phiBasis_; // E = Q - C W
+        out.rightCols(4).noalias() = product_ * transform_.leftCols(r).transpose();
         return r;
     }
 
 private:
     int k_;
-    Eigen::MatrixXd points_, system_, identity_, inverse_, transform_;
+    Eigen::MatrixXd points_, transform_, phi_, basis_, phiBasis_, small_, product_, system_;
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen_;
-    Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+    Eigen::LLT<Eigen::MatrixXd> llt_;
 };
 
 // y = H x (Columns columns at once: one pass over H).
