@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// mapping-bench [max_points] [--min N] [--kinds a,b,...] : set-up time, apply time, memory and
-// accuracy of each mapping against interface size, on a synthetic foil-like surface.
+// mapping-bench [max_points] [--min N] [--kinds a,b,...] [--wendland-radius R] : set-up time,
+// apply time, memory and accuracy of each mapping against interface size, on a synthetic
+// foil-like surface.
 //
 // Interface: a NACA 0012 section (chord 1 m, closed trailing edge) extruded over a span of 1 m,
 // open ends. Solid side (source): n nodes, n_c around the section (clustered towards the
@@ -11,8 +12,8 @@
 // centroid of each quad, so slightly inside the curved surface, as fluid face centres are.
 // Sizes n = 1e3, 3e3, 1e4, 3e4, 1e5, 3e5, 1e6 up to max_points (default 1e5).
 // Kinds: nearest-neighbour, rbf-pu (defaults), rbf-wendland-c2 (support radius 4 mean solid
-// spacings, solver auto: sparse LDLT up to 2e4 source points, CG + incomplete Cholesky above;
-// skipped above 1e5), rbf-thin-plate (dense; skipped above 4e3).
+// spacings, or R m with --wendland-radius; solver auto: sparse LDLT up to 2e4 source points,
+// CG + incomplete Cholesky above; skipped above 1e5), rbf-thin-plate (dense; skipped above 4e3).
 //
 // One line per kind and size:
 //   mapping-bench: kind=K n=N setup_s=X apply_s=X rss_mb=X max_rel_err=X <more fields>
@@ -169,8 +170,8 @@ template <class F> Timing timePerCall(F&& call)
     return {(cpuSeconds() - cpu0) / calls, (wallSeconds() - wall0) / calls};
 }
 
-// One case, in the calling (child) process; prints its line.
-void runCase(const std::string& kind, long size)
+// One case, in the calling (child) process; prints its line. wendlandRadius [m], 0: 4 spacings.
+void runCase(const std::string& kind, long size, double wendlandRadius)
 {
     const int nAround = 2 * std::max(2, int(std::lround(std::sqrt(2.0 * size) / 2.0)));
     const PointCloud s = solidFoil(nAround);
@@ -183,7 +184,7 @@ void runCase(const std::string& kind, long size)
 
     MappingParameters params;
     params.type = kind;
-    params.wendland.supportRadius = 4.0 * h;
+    params.wendland.supportRadius = wendlandRadius > 0.0 ? wendlandRadius : 4.0 * h;
     const double rss0 = statusMiB("VmRSS");
     const bool peakReset = resetPeak();
     const double cpu0 = cpuSeconds(), wall0 = wallSeconds();
@@ -218,6 +219,7 @@ int main(int argc, char** argv)
 try
 {
     long maxPoints = 100000, minPoints = 1000;
+    double wendlandRadius = 0.0;
     std::vector<std::string> kinds{"nearest-neighbour", "rbf-pu", "rbf-wendland-c2",
                                    "rbf-thin-plate"};
     for (int a = 1; a < argc; ++a)
@@ -232,11 +234,14 @@ try
             for (std::string kind; std::getline(list, kind, ',');)
                 kinds.push_back(kind);
         }
+        else if (arg == "--wendland-radius" && a + 1 < argc)
+            wendlandRadius = std::atof(argv[++a]);
         else if (!arg.empty() && arg[0] != '-')
             maxPoints = std::atol(arg.c_str());
         else
             throw std::runtime_error("usage: mapping-bench [max_points] [--min N] "
-                                     "[--kinds nearest-neighbour,rbf-pu,...]");
+                                     "[--kinds nearest-neighbour,rbf-pu,...] "
+                                     "[--wendland-radius R]");
     }
     for (const std::string& kind : kinds)
         for (long size : {1000L, 3000L, 10000L, 30000L, 100000L, 300000L, 1000000L})
@@ -259,7 +264,7 @@ try
                 int status = 0;
                 try
                 {
-                    runCase(kind, size);
+                    runCase(kind, size, wendlandRadius);
                 }
                 catch (const std::exception& e)
                 {
