@@ -9,7 +9,8 @@
 // On each patch a local interpolant: polyharmonic cubic phi(r) = r^3 plus the linear polynomial,
 // in coordinates centred at c_p and scaled by rho_p, from the small dense saddle-point system
 // [Phi Q; Q^T 0] (Q: orthonormal basis of the linear functions the patch points resolve, from
-// their principal axes). The patches are blended with Wendland C2 weights
+// their principal axes; inverted through the Cholesky factor of P Phi P + Q Q^T, P = I - Q Q^T,
+// which is positive definite for distinct points). The patches are blended with Wendland C2 weights
 // w_p(x) = psi(|x - c_p| / rho_p), psi(r) = (1 - r)^4_+ (4 r + 1), normalised at each target:
 //   H = sum_p diag(w_p / sum_q w_q) L_p        (L_p: Lagrange matrix of patch p, targets x k)
 // stored as one sparse matrix (CSR; a row holds the union of its covering patches' points,
