@@ -1,22 +1,47 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// mapping-bench [max_points] : set-up and apply time of each mapping against interface size.
-// Interface: a cylinder (radius 0.5 m, length 1 m); solid side N_s nodes on a structured grid,
-// fluid side about 2.25 N_s points sampled differently (1.5x denser, rotated). Sizes 1e2..1e5
-// for nearest-neighbour and Wendland C2 (support radius 4 solid spacings, stationary; solver
-// "auto" = sparse LDLT up to 2e4 source points, CG + incomplete Cholesky above; and CG forced,
-// "wendland-cg"), up to 4e3 for the thin-plate spline. Apply = 3 columns (a vector field).
-// Timings are process CPU seconds (one thread), independent of the machine's load.
-// Error: relative max error of f = sin(3x) cos(2y) + sin(4z) mapped consistently, and of a
-// linear field (zero for the RBF kinds up to round-off).
+// mapping-bench [max_points] [--min N] [--kinds a,b,...] [--wendland-radius R] : set-up time,
+// apply time, memory and accuracy of each mapping against interface size, on a synthetic
+// foil-like surface.
+//
+// Interface: a NACA 0012 section (chord 1 m, closed trailing edge) extruded over a span of 1 m,
+// open ends. Solid side (source): n nodes, n_c around the section (clustered towards the
+// leading edge, x = 1 - cos(pi u / 2)) times n_c / 2 + 1 along the span, ends included.
+// Fluid side (target): about 2 n face centres of a different, denser grid (sqrt 2 finer each
+// way, milder clustering x = 0.7 (1 - cos(pi u / 2)) + 0.3 u, shifted by 0.37 of a step): the
+// centroid of each quad, so slightly inside the curved surface, as fluid face centres are.
+// Sizes n = 1e3, 3e3, 1e4, 3e4, 1e5, 3e5, 1e6 up to max_points (default 1e5).
+// Kinds: nearest-neighbour, rbf-pu (defaults), rbf-wendland-c2 (support radius 4 mean solid
+// spacings, or R m with --wendland-radius; solver auto: sparse LDLT up to 2e4 source points,
+// CG + incomplete Cholesky above; skipped above 1e5), rbf-thin-plate (dense; skipped above 4e3).
+//
+// One line per kind and size:
+//   mapping-bench: kind=K n=N setup_s=X apply_s=X rss_mb=X max_rel_err=X <more fields>
+// setup_s: buildMapping (checks, search trees, local/global solves), process CPU seconds;
+// apply_s: one consistent apply of a 3-component field, CPU seconds per call (mean of repeats
+// after a first call that sizes the workspace);
+// rss_mb: peak resident set of the case minus the resident set just before set-up (point
+// clouds and fields excluded; the set-up transient included), MiB; each case runs in a forked
+// child so cases do not share a heap. max_rel_err: max |error| / max |f| of the smooth field
+// f = (sin(3x) cos(2y) + sin(4z), cos(3z) + 2 y, sin(2x + 5y)) mapped consistently.
+// More fields: n_target, setup_wall_s, apply_wall_s, conservative_s (one H^T apply, CPU),
+// peak_rss_mb (absolute), lin_err (the same error for a linear field: round-off for RBF kinds).
+// CPU seconds are the figures to compare on a shared machine; wall seconds show the load.
 #include "mapping/Mapping.hpp"
-#include "mapping/RbfWendlandC2.hpp"
 
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <ctime>
 #include <exception>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -26,15 +51,48 @@ namespace
 {
 const double pi = std::acos(-1.0);
 
-PointCloud cylinder(int nTheta, int nZ, double thetaShift, double zLo, double zHi)
+double thickness(double x)
 {
-    PointCloud p(nTheta * nZ, 3);
-    for (int j = 0; j < nZ; ++j)
-        for (int i = 0; i < nTheta; ++i)
+    x = std::clamp(x, 0.0, 1.0);
+    return 0.6 * (0.2969 * std::sqrt(x) - 0.1260 * x - 0.3516 * x * x + 0.2843 * x * x * x -
+                  0.1036 * x * x * x * x);
+}
+
+// Point of the section at loop parameter v in [0, 1): upper side LE -> TE, lower side TE -> LE.
+Eigen::RowVector2d section(double v, bool fluid)
+{
+    v -= std::floor(v);
+    const double u = v < 0.5 ? 2.0 * v : 2.0 * (1.0 - v);
+    const double cosine = 1.0 - std::cos(0.5 * pi * u);
+    const double x = fluid ? 0.7 * cosine + 0.3 * u : cosine;
+    return {x, (v < 0.5 ? 1.0 : -1.0) * thickness(x)};
+}
+
+// Solid: nAround x (nAround / 2 + 1) nodes, span ends included.
+PointCloud solidFoil(int nAround)
+{
+    const int nSpan = nAround / 2 + 1;
+    PointCloud p(Eigen::Index(nAround) * nSpan, 3);
+    for (int j = 0; j < nSpan; ++j)
+        for (int i = 0; i < nAround; ++i)
         {
-            const double theta = 2.0 * pi * (i + thetaShift) / nTheta;
-            const double z = zLo + (zHi - zLo) * j / (nZ - 1);
-            p.row(j * nTheta + i) << 0.5 * std::cos(theta), 0.5 * std::sin(theta), z;
+            const Eigen::RowVector2d xy = section(double(i) / nAround, false);
+            p.row(Eigen::Index(j) * nAround + i) << xy(0), xy(1), double(j) / (nSpan - 1);
+        }
+    return p;
+}
+
+// Fluid: centroids of the mAround x mSpan quads of a grid shifted by 0.37 of a step.
+PointCloud fluidFoil(int mAround, int mSpan)
+{
+    PointCloud p(Eigen::Index(mAround) * mSpan, 3);
+    for (int j = 0; j < mSpan; ++j)
+        for (int i = 0; i < mAround; ++i)
+        {
+            const Eigen::RowVector2d a = section((i + 0.37) / mAround, true);
+            const Eigen::RowVector2d b = section((i + 1.37) / mAround, true);
+            const Eigen::RowVector2d xy = 0.5 * (a + b); // the two span edges share the corners
+            p.row(Eigen::Index(j) * mAround + i) << xy(0), xy(1), (j + 0.5) / mSpan;
         }
     return p;
 }
@@ -48,8 +106,8 @@ Values field(const PointCloud& x, bool linear)
         if (linear)
             f.row(i) << 1 + 2 * a - b, 3 * c - a, 0.5 + b + c;
         else
-            f.row(i) << std::sin(3 * a) * std::cos(2 * b) + std::sin(4 * c), std::cos(3 * c),
-                std::sin(2 * a + b);
+            f.row(i) << std::sin(3 * a) * std::cos(2 * b) + std::sin(4 * c),
+                std::cos(3 * c) + 2 * b, std::sin(2 * a + 5 * b);
     }
     return f;
 }
@@ -59,81 +117,171 @@ double relativeError(const Values& got, const Values& want)
     return (got - want).cwiseAbs().maxCoeff() / want.cwiseAbs().maxCoeff();
 }
 
-// Process CPU time [s]: the code is single-threaded, and CPU time does not depend on how many
-// other jobs share the cores (wall time does).
 double cpuSeconds()
 {
-    return double(std::clock()) / CLOCKS_PER_SEC;
+    timespec ts{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
 }
 
-template <class F> double timePerCall(F&& call)
+double wallSeconds()
 {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+}
+
+// VmRSS or VmHWM of this process [MiB].
+double statusMiB(const char* key)
+{
+    std::ifstream in("/proc/self/status");
+    std::string line;
+    while (std::getline(in, line))
+        if (line.rfind(key, 0) == 0)
+            return std::atof(line.c_str() + std::strlen(key) + 1) / 1024.0; // kB
+    return std::nan("");
+}
+
+// Resets VmHWM to the current resident set (Linux >= 4.0); false when not possible.
+bool resetPeak()
+{
+    std::ofstream out("/proc/self/clear_refs");
+    out << "5";
+    out.flush();
+    return static_cast<bool>(out);
+}
+
+struct Timing
+{
+    double cpu = 0, wall = 0; // per call [s]
+};
+
+// Mean time of repeated calls (at least 0.3 s CPU, at most 200 calls) after one untimed call,
+// which sizes the mapping's workspace.
+template <class F> Timing timePerCall(F&& call)
+{
+    call();
     int calls = 0;
-    const double start = cpuSeconds();
+    const double cpu0 = cpuSeconds(), wall0 = wallSeconds();
     do
     {
         call();
         ++calls;
-    } while (cpuSeconds() - start < 0.3 && calls < 200);
-    return (cpuSeconds() - start) / calls;
+    } while (cpuSeconds() - cpu0 < 0.3 && calls < 200);
+    return {(cpuSeconds() - cpu0) / calls, (wallSeconds() - wall0) / calls};
+}
+
+// One case, in the calling (child) process; prints its line. wendlandRadius [m], 0: 4 spacings.
+void runCase(const std::string& kind, long size, double wendlandRadius)
+{
+    const int nAround = 2 * std::max(2, int(std::lround(std::sqrt(2.0 * size) / 2.0)));
+    const PointCloud s = solidFoil(nAround);
+    const int mAround = int(std::lround(std::sqrt(2.0) * nAround));
+    const PointCloud t = fluidFoil(mAround, std::max(1, mAround / 2));
+    const double h = 2.03 / nAround; // mean solid spacing (perimeter ~2.03 m) [m]
+    const Values smooth = field(s, false), linear = field(s, true);
+    const Values smoothExact = field(t, false), linearExact = field(t, true);
+    Values mapped(t.rows(), 3), back(s.rows(), 3);
+
+    MappingParameters params;
+    params.type = kind;
+    params.wendland.supportRadius = wendlandRadius > 0.0 ? wendlandRadius : 4.0 * h;
+    const double rss0 = statusMiB("VmRSS");
+    const bool peakReset = resetPeak();
+    const double cpu0 = cpuSeconds(), wall0 = wallSeconds();
+    const auto mapping = buildMapping(params, s, t);
+    const double setupCpu = cpuSeconds() - cpu0, setupWall = wallSeconds() - wall0;
+    const Timing consistent = timePerCall([&] { mapping->applyConsistent(smooth, mapped); });
+    const double error = relativeError(mapped, smoothExact);
+    mapping->applyConsistent(linear, mapped);
+    const double linearError = relativeError(mapped, linearExact);
+    const Timing conservative = timePerCall([&] { mapping->applyConservative(smoothExact, back); });
+    const double peak = statusMiB("VmHWM");
+    std::printf("mapping-bench: kind=%s n=%ld setup_s=%.3g apply_s=%.3g rss_mb=%.0f "
+                "max_rel_err=%.2e n_target=%ld setup_wall_s=%.3g apply_wall_s=%.3g "
+                "conservative_s=%.3g peak_rss_mb=%.0f lin_err=%.1e%s\n",
+                kind.c_str(), long(s.rows()), setupCpu, consistent.cpu, peak - rss0, error,
+                long(t.rows()), setupWall, consistent.wall, conservative.cpu, peak, linearError,
+                peakReset ? "" : " (peak not reset: rss_mb includes the clouds)");
+    std::fflush(stdout);
+}
+
+long sizeLimit(const std::string& kind)
+{
+    if (kind == "rbf-thin-plate")
+        return 4000;
+    if (kind == "rbf-wendland-c2")
+        return 100000;
+    return 0;
 }
 } // namespace
 
 int main(int argc, char** argv)
 try
 {
-    const long maxPoints = argc > 1 ? std::atol(argv[1]) : 100000;
-    std::printf("%-18s %8s %8s %9s %11s %11s %11s %10s %10s  %s\n", "mapping", "N_s", "N_t",
-                "h [m]", "setup [s]", "consist [s]", "conserv [s]", "err smooth", "err linear",
-                "solver");
-    for (const std::string label :
-         {"nearest-neighbour", "rbf-wendland-c2", "wendland-cg", "rbf-thin-plate"})
+    long maxPoints = 100000, minPoints = 1000;
+    double wendlandRadius = 0.0;
+    std::vector<std::string> kinds{"nearest-neighbour", "rbf-pu", "rbf-wendland-c2",
+                                   "rbf-thin-plate"};
+    for (int a = 1; a < argc; ++a)
     {
-        const std::string type = label == "wendland-cg" ? "rbf-wendland-c2" : label;
-        long limit = type == "rbf-thin-plate" ? std::min(maxPoints, 4000L) : maxPoints;
-        if (label == "wendland-cg")
-            limit = std::min(maxPoints, 10000L);
-        for (long target : {100L, 300L, 1000L, 3000L, 10000L, 30000L, 100000L})
+        const std::string arg = argv[a];
+        if (arg == "--min" && a + 1 < argc)
+            minPoints = std::atol(argv[++a]);
+        else if (arg == "--kinds" && a + 1 < argc)
         {
-            if (target > limit)
-                break;
-            // nTheta (nTheta/2 + 1) ~ target, nTheta a multiple of 4.
-            int nTheta = 4 * std::max(1, int(std::lround(std::sqrt(2.0 * target) / 4.0)));
-            const PointCloud s = cylinder(nTheta, nTheta / 2 + 1, 0.0, 0.0, 1.0);
-            const int m = 3 * nTheta / 2, mz = 3 * nTheta / 4;
-            const PointCloud t = cylinder(m, mz, 0.37, 0.5 / mz, 1.0 - 0.5 / mz);
-            const double h = 2.0 * pi * 0.5 / nTheta;
-
-            MappingParameters params;
-            params.type = type;
-            params.wendland.supportRadius = 4.0 * h;
-            if (label == "wendland-cg")
-                params.wendland.solver = "iterative";
-            const double start = cpuSeconds();
-            const auto mapping = buildMapping(params, s, t);
-            const double setup = cpuSeconds() - start;
-
-            const Values smooth = field(s, false), linear = field(s, true);
-            Values mapped(t.rows(), 3), back(s.rows(), 3);
-            const double consistent =
-                timePerCall([&] { mapping->applyConsistent(smooth, mapped); });
-            const double smoothError = relativeError(mapped, field(t, false));
-            mapping->applyConsistent(linear, mapped);
-            const double linearError = relativeError(mapped, field(t, true));
-            const Values forces = field(t, false);
-            const double conservative =
-                timePerCall([&] { mapping->applyConservative(forces, back); });
-            std::string solver = type == "rbf-thin-plate" ? "dense LU" : "-";
-            if (const auto* w = dynamic_cast<const RbfWendlandC2*>(mapping.get()))
-                solver = w->iterative()
-                             ? "CG+IC, " + std::to_string(w->lastIterations()) + " iterations"
-                             : "sparse LDLT";
-            std::printf("%-18s %8ld %8ld %9.3e %11.3e %11.3e %11.3e %10.3e %10.3e  %s\n",
-                        label.c_str(), long(s.rows()), long(t.rows()), h, setup, consistent,
-                        conservative, smoothError, linearError, solver.c_str());
+            kinds.clear();
+            std::stringstream list(argv[++a]);
+            for (std::string kind; std::getline(list, kind, ',');)
+                kinds.push_back(kind);
+        }
+        else if (arg == "--wendland-radius" && a + 1 < argc)
+            wendlandRadius = std::atof(argv[++a]);
+        else if (!arg.empty() && arg[0] != '-')
+            maxPoints = std::atol(arg.c_str());
+        else
+            throw std::runtime_error("usage: mapping-bench [max_points] [--min N] "
+                                     "[--kinds nearest-neighbour,rbf-pu,...] "
+                                     "[--wendland-radius R]");
+    }
+    for (const std::string& kind : kinds)
+        for (long size : {1000L, 3000L, 10000L, 30000L, 100000L, 300000L, 1000000L})
+        {
+            if (size < minPoints || size > maxPoints)
+                continue;
+            if (sizeLimit(kind) > 0 && size > sizeLimit(kind))
+            {
+                std::printf("mapping-bench: kind=%s n=%ld skipped (above %ld points: too slow or "
+                            "too large)\n",
+                            kind.c_str(), size, sizeLimit(kind));
+                std::fflush(stdout);
+                continue;
+            }
+            const pid_t child = fork();
+            if (child < 0)
+                throw std::runtime_error("fork failed");
+            if (child == 0)
+            {
+                int status = 0;
+                try
+                {
+                    runCase(kind, size, wendlandRadius);
+                }
+                catch (const std::exception& e)
+                {
+                    std::printf("mapping-bench: kind=%s n=%ld failed: %s\n", kind.c_str(), size,
+                                e.what());
+                    status = 1;
+                }
+                std::fflush(stdout);
+                std::_Exit(status);
+            }
+            int status = 0;
+            waitpid(child, &status, 0);
+            if (!WIFEXITED(status))
+                std::printf("mapping-bench: kind=%s n=%ld failed: child ended by signal %d\n",
+                            kind.c_str(), size, WIFSIGNALED(status) ? WTERMSIG(status) : 0);
             std::fflush(stdout);
         }
-    }
     return 0;
 }
 catch (const std::exception& e)

@@ -110,6 +110,36 @@ TEST(CouplingParameters, BadInputNamesTheKey)
     EXPECT_NE(errorOf(minimal + "  recovery: {retries: 2}\n").find("unknown key 'retries'"), std::string::npos);
 }
 
+TEST(CouplingParameters, PartitionOfUnityMappingParsesWithDefaultsAndNamesBadKeys)
+{
+    const std::string head = "  convergence: {absolute_tolerance: 1.0e-7}\n"
+                             "  acceleration: {type: aitken, aitken: {initial_relaxation: 0.5}}\n";
+    const auto defaults = parseText(head + "  mapping: {type: rbf-pu}\n");
+    EXPECT_EQ(defaults.mapping.type, "rbf-pu");
+    EXPECT_EQ(defaults.mapping.partitionOfUnity.pointsPerPatch, 20);
+    EXPECT_DOUBLE_EQ(defaults.mapping.partitionOfUnity.centreSpacing, 0.85);
+    EXPECT_NE(defaults.echo().find("rbf-pu: {points_per_patch: 20, centre_spacing: 0.85}"),
+              std::string::npos)
+        << defaults.echo();
+    const auto given = parseText(
+        head + "  mapping: {type: rbf-pu, rbf-pu: {points_per_patch: 30, centre_spacing: 0.7}}\n");
+    EXPECT_EQ(given.mapping.partitionOfUnity.pointsPerPatch, 30);
+    EXPECT_DOUBLE_EQ(given.mapping.partitionOfUnity.centreSpacing, 0.7);
+    const std::string few =
+        errorOf(head + "  mapping: {type: rbf-pu, rbf-pu: {points_per_patch: 2}}\n");
+    EXPECT_NE(few.find("coupling.mapping.rbf-pu"), std::string::npos) << few;
+    EXPECT_NE(few.find("mapping.rbf-pu.points_per_patch must be in [4, 200] (got 2)"),
+              std::string::npos)
+        << few;
+    EXPECT_NE(errorOf(head + "  mapping: {type: rbf-pu, rbf-pu: {support_radius: 1}}\n")
+                  .find("unknown key 'support_radius'"),
+              std::string::npos);
+    EXPECT_NE(errorOf(head + "  mapping: {type: rbf-wendland-c2, rbf-wendland-c2: "
+                             "{support_radius: 1}, rbf-pu: {}}\n")
+                  .find("remove the block or change type"),
+              std::string::npos);
+}
+
 // Issue 15: a bad RBF coefficient is named under its own block with its value in %g, and the
 // launch timeout is capped (1e10 s overflowed the comm layer's clock).
 TEST(CouplingParameters, StrategyErrorsNameTheirBlockAndKeepSmallValues)

@@ -50,4 +50,21 @@ inline PointCloud plate(int nx, int ny, double lx, double ly, double dx, double 
     return p;
 }
 
+// L-shaped interface: floor z = offset and wall x = offset, each 1 m x 1 m with n x n points
+// (spacing 1/n m, shifted by shift of a step). Patches inside the floor or the wall are
+// coplanar: they resolve 3 of the 4 linear functions of the whole interface.
+inline PointCloud corner(int n, double shift, double offset)
+{
+    PointCloud p(2 * n * n, 3);
+    Eigen::Index row = 0;
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i)
+        {
+            const double u = (i + shift + 0.5) / n, v = (j + shift) / n;
+            p.row(row++) << u, v, offset; // floor
+            p.row(row++) << offset, v, u; // wall
+        }
+    return p;
+}
+
 } // namespace fsi::mapping::test

@@ -120,10 +120,14 @@ TEST_P(RbfMapping, ConservativeIsTransposeOfConsistent)
     EXPECT_NEAR(lhs, rhs, 1e-12 * (std::abs(lhs) + hu.norm() * g.norm()));
 }
 
-INSTANTIATE_TEST_SUITE_P(Kinds, RbfMapping, ::testing::Values("rbf-thin-plate", "rbf-wendland-c2"),
-                         [](const auto& info) {
-                             return info.param == "rbf-thin-plate" ? std::string("ThinPlate")
-                                                                   : std::string("WendlandC2");
+INSTANTIATE_TEST_SUITE_P(Kinds, RbfMapping,
+                         ::testing::Values("rbf-thin-plate", "rbf-wendland-c2", "rbf-pu"),
+                         [](const auto& info)
+                         {
+                             if (info.param == "rbf-thin-plate")
+                                 return std::string("ThinPlate");
+                             return info.param == "rbf-pu" ? std::string("PartitionOfUnity")
+                                                           : std::string("WendlandC2");
                          });
 
 TEST(WendlandIterative, MatchesDirectAndKeepsTheExactProperties)
@@ -198,7 +202,7 @@ TEST(NearestNeighbourMapping, CopiesNearestValues)
 TEST(MappingApply, RepeatedAndMultiColumnCallsAgree)
 {
     const PointCloud s = solidCylinder(16), t = fluidCylinder(16);
-    for (const char* type : {"nearest-neighbour", "rbf-thin-plate", "rbf-wendland-c2"})
+    for (const char* type : {"nearest-neighbour", "rbf-thin-plate", "rbf-wendland-c2", "rbf-pu"})
     {
         const auto mapping = buildMapping(params(type), s, t);
         const Values u = linearField(s).array().sin();
@@ -227,7 +231,7 @@ TEST(MappingParameters, RejectsBadInputWithOneLineMessages)
     };
     MappingParameters p = params("rbf-quadratic");
     EXPECT_EQ(message(p), "mapping.type 'rbf-quadratic' is unknown; use one of "
-                          "nearest-neighbour, rbf-thin-plate, rbf-wendland-c2");
+                          "nearest-neighbour, rbf-thin-plate, rbf-wendland-c2, rbf-pu");
     p = params("rbf-wendland-c2");
     p.wendland.supportRadius = 0.0;
     EXPECT_NE(message(p).find("rbf-wendland-c2.support_radius must be > 0 m"), std::string::npos);

@@ -9,13 +9,14 @@
 #include <gtest/gtest.h>
 
 using namespace fsi::mapping;
+using fsi::mapping::test::corner;
 using fsi::mapping::test::fluidCylinder;
 using fsi::mapping::test::solidCylinder;
 
 TEST(MappingApply, AllocatesNothingAfterTheFirstCall)
 {
     const PointCloud s = solidCylinder(24), t = fluidCylinder(24);
-    for (const char* type : {"nearest-neighbour", "rbf-thin-plate", "rbf-wendland-c2"})
+    for (const char* type : {"nearest-neighbour", "rbf-thin-plate", "rbf-wendland-c2", "rbf-pu"})
     {
         MappingParameters p;
         p.type = type;
@@ -35,4 +36,26 @@ TEST(MappingApply, AllocatesNothingAfterTheFirstCall)
         Eigen::internal::set_is_malloc_allowed(true);
         EXPECT_NEAR(v(0, 0), 1.0, 1e-12) << type; // constants are reproduced
     }
+}
+
+TEST(MappingApply, PartitionOfUnityCorrectionAllocatesNothingAfterTheFirstCall)
+{
+    // Coplanar patches with targets off their plane: the correction path of rbf-pu.
+    const PointCloud s = corner(12, 0.0, 0.0), t = corner(17, 0.3, 0.002);
+    MappingParameters p;
+    p.type = "rbf-pu";
+    const auto mapping = buildMapping(p, s, t);
+    const Values u = Values::Ones(s.rows(), 3), g = Values::Ones(t.rows(), 3);
+    Values v(t.rows(), 3), f(s.rows(), 3), v1(t.rows(), 1);
+    mapping->applyConsistent(u, v);
+    mapping->applyConservative(g, f);
+    Eigen::internal::set_is_malloc_allowed(false);
+    for (int i = 0; i < 3; ++i)
+    {
+        mapping->applyConsistent(u, v);
+        mapping->applyConservative(g, f);
+    }
+    Eigen::internal::set_is_malloc_allowed(true);
+    EXPECT_NEAR(v(0, 0), 1.0, 1e-12);
+    EXPECT_NEAR(f.col(0).sum(), double(t.rows()), 1e-9);
 }

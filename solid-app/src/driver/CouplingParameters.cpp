@@ -76,8 +76,9 @@ acceleration::AcceleratorParameters parseAcceleration(const config::Block& b)
 
 mapping::MappingParameters parseMapping(const config::Block& b)
 {
-    const std::vector<std::string> types{"nearest-neighbour", "rbf-thin-plate", "rbf-wendland-c2"};
-    b.allowOnly({"type", "overlap_tolerance", "rbf-thin-plate", "rbf-wendland-c2"});
+    const std::vector<std::string> types{"nearest-neighbour", "rbf-thin-plate", "rbf-wendland-c2",
+                                         "rbf-pu"};
+    b.allowOnly({"type", "overlap_tolerance", "rbf-thin-plate", "rbf-wendland-c2", "rbf-pu"});
     mapping::MappingParameters p;
     p.type = b.choice("type", types);
     onlySelectedCoefficients(b, p.type, types);
@@ -96,6 +97,15 @@ mapping::MappingParameters parseMapping(const config::Block& b)
         auto c = b.block("rbf-thin-plate");
         c.allowOnly({"max_source_points"});
         p.thinPlate.maxSourcePoints = c.integer("max_source_points");
+    }
+    else if (p.type == "rbf-pu" && b.has("rbf-pu"))
+    {
+        auto c = b.block("rbf-pu");
+        c.allowOnly({"points_per_patch", "centre_spacing"});
+        p.partitionOfUnity.pointsPerPatch =
+            c.integer("points_per_patch", static_cast<int>(p.partitionOfUnity.pointsPerPatch));
+        p.partitionOfUnity.centreSpacing =
+            c.number("centre_spacing", p.partitionOfUnity.centreSpacing);
     }
     // a coefficient error is named under the strategy's own block, e.g.
     // coupling.mapping.rbf-wendland-c2 (the block holds the offending key)
@@ -282,6 +292,9 @@ std::string CouplingParameters::echo() const
           << ", solver: " << mapping.wendland.solver
           << ", direct_max_points: " << mapping.wendland.directMaxPoints
           << ", iterative_tolerance: " << mapping.wendland.iterativeTolerance << "}\n";
+    if (mapping.type == "rbf-pu")
+        s << "    rbf-pu: {points_per_patch: " << mapping.partitionOfUnity.pointsPerPatch
+          << ", centre_spacing: " << mapping.partitionOfUnity.centreSpacing << "}\n";
     s << "  time: {type: " << time.type;
     if (time.type == "list")
     {

@@ -3,6 +3,7 @@
 
 #include "mapping/NearestNeighbour.hpp"
 #include "mapping/Quality.hpp"
+#include "mapping/RbfPartitionOfUnity.hpp"
 #include "mapping/RbfThinPlate.hpp"
 #include "mapping/RbfWendlandC2.hpp"
 
@@ -48,16 +49,28 @@ void ThinPlateParameters::validate() const
                                  std::to_string(maxSourcePoints) + ")");
 }
 
+void PartitionOfUnityParameters::validate() const
+{
+    if (pointsPerPatch < 4 || pointsPerPatch > 200)
+        throw std::runtime_error("mapping.rbf-pu.points_per_patch must be in [4, 200] (got " +
+                                 std::to_string(pointsPerPatch) + "); e.g. 20");
+    if (!(centreSpacing > 0.0 && centreSpacing < 1.0))
+        throw std::runtime_error("mapping.rbf-pu.centre_spacing must be in (0, 1) (got " +
+                                 number(centreSpacing) + "); e.g. 0.85");
+}
+
 void MappingParameters::validate() const
 {
     if (type == "rbf-wendland-c2")
         wendland.validate();
     else if (type == "rbf-thin-plate")
         thinPlate.validate();
+    else if (type == "rbf-pu")
+        partitionOfUnity.validate();
     else if (type != "nearest-neighbour")
         throw std::runtime_error("mapping.type '" + type +
                                  "' is unknown; use one of "
-                                 "nearest-neighbour, rbf-thin-plate, rbf-wendland-c2");
+                                 "nearest-neighbour, rbf-thin-plate, rbf-wendland-c2, rbf-pu");
     if (!(overlapTolerance > 0.0) || !std::isfinite(overlapTolerance))
         throw std::runtime_error("mapping.overlap_tolerance must be > 0 (relative to the "
                                  "interface size; e.g. 0.1), got " +
@@ -71,6 +84,8 @@ std::unique_ptr<Mapping> makeMapping(const MappingParameters& params)
         return std::make_unique<RbfThinPlate>(params.thinPlate.maxSourcePoints);
     if (params.type == "rbf-wendland-c2")
         return std::make_unique<RbfWendlandC2>(params.wendland);
+    if (params.type == "rbf-pu")
+        return std::make_unique<RbfPartitionOfUnity>(params.partitionOfUnity);
     return std::make_unique<NearestNeighbour>();
 }
 

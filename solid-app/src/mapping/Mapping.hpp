@@ -9,7 +9,7 @@
 //   conservative (forces):        sourceValues = H^T targetValues      (per component)
 // For forces, build the mapping with source = solid wetted nodes and target = fluid face centres
 // and call applyConservative: total force is conserved exactly (H reproduces constants), total
-// moment too when H reproduces linear fields (both RBF kinds; not nearest-neighbour).
+// moment too when H reproduces linear fields (all RBF kinds; not nearest-neighbour).
 #pragma once
 
 #include <Eigen/Core>
@@ -32,7 +32,8 @@ class Mapping
 public:
     virtual ~Mapping() = default;
 
-    // Keyword of the strategy ("nearest-neighbour", "rbf-thin-plate", "rbf-wendland-c2").
+    // Keyword of the strategy ("nearest-neighbour", "rbf-thin-plate", "rbf-wendland-c2",
+    // "rbf-pu").
     virtual std::string name() const = 0;
 
     // Set-up (search trees, factorisations); the expensive part, done once per pair of meshes.
@@ -79,15 +80,28 @@ struct ThinPlateParameters
     void validate() const;
 };
 
+// Coefficients of rbf-pu, partition of unity: local cubic RBF + linear polynomial on
+// overlapping patches of k nearest source points, blended by smooth weights
+// (RbfPartitionOfUnity.hpp). Set-up and apply O(N), for any interface size.
+struct PartitionOfUnityParameters
+{
+    long pointsPerPatch = 20;    // k: source points of each local problem, in [4, 200]; more =
+                                 // a little more accurate, cost ~ k^2
+    double centreSpacing = 0.85; // in (0, 1): every target lies within this fraction of a patch
+                                 // radius from a patch centre; smaller = more overlap, slower
+    void validate() const;       // throws one line naming mapping.rbf-pu.<key>
+};
+
 struct MappingParameters
 {
-    // "nearest-neighbour" | "rbf-thin-plate" | "rbf-wendland-c2"
+    // "nearest-neighbour" | "rbf-thin-plate" | "rbf-wendland-c2" | "rbf-pu"
     std::string type = "nearest-neighbour";
     // checkOverlap(): max distance from a target point to the nearest source point, relative to
     // the source interface size (bounding-box diagonal); larger means the meshes do not match.
     double overlapTolerance = 0.1;
     WendlandParameters wendland;
     ThinPlateParameters thinPlate;
+    PartitionOfUnityParameters partitionOfUnity;
 
     // Throws std::runtime_error, one line naming the key (mapping.<key>) and the fix.
     void validate() const;
