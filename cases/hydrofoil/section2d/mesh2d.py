@@ -62,6 +62,8 @@ def parseArgs(argv):
     p.add_argument("--tc", type=float, default=0.12)
     p.add_argument("--cli", type=float, default=0.5)
     p.add_argument("--meanline", default="a08", choices=["a08", "a08mod"])
+    p.add_argument("--te", default="blunt", choices=["blunt", "sharp"],
+                   help="trailing edge: blunt (the section's 0.4 mm face) or sharp (closed)")
     a = p.parse_args(argv)
     if not 0 <= a.level <= 6:
         p.error("--level must be 0..6")
@@ -119,7 +121,7 @@ def normals(poly):
     return np.column_stack([t[:, 1], -t[:, 0]])
 
 
-def build(level, tc, cli, meanline):
+def build(level, tc, cli, meanline, te="blunt"):
     k = RATIO ** level
     nSide, nTe = round(N_SIDE_0 * k), 2 * round(N_TE_0 * k / 2)
     nWake, nNormal = round(N_WAKE_0 * k), round(N_NORMAL_0 * k)
@@ -129,6 +131,13 @@ def build(level, tc, cli, meanline):
     # tunnel frame: suction side (section "upper") towards -y
     suction = np.column_stack([X_LE + upper[:, 0], -upper[:, 1]])
     pressure = np.column_stack([X_LE + lower[:, 0], -lower[:, 1]])
+    if te == "sharp":
+        # close the 0.4 mm trailing edge: each side moves by its offset from the trailing-edge
+        # midpoint, linearly in x/c (the leading edge stays; <= 0.2 mm change at the TE)
+        mid = 0.5 * (suction[-1] + pressure[-1])
+        for side in (suction, pressure):
+            side += np.outer((side[:, 0] - X_LE) / CHORD, mid - side[-1])
+        suction[-1] = pressure[-1] = mid
     t = clustered(nSide)
     sideA = resample(suction, t)[::-1]   # suction side, trailing edge -> leading edge
     sideB = resample(pressure, t)[1:]    # pressure side, after the leading edge -> TE
@@ -142,6 +151,9 @@ def build(level, tc, cli, meanline):
     d = geometric(dsTe, wakeLen, nWake)          # distance behind the trailing edge
     frac = d / wakeLen
     width = (cornerB[1] - cornerA[1]) + (WAKE_WIDTH_OUT - (cornerB[1] - cornerA[1])) * frac
+    cellAcross = width / nTe              # strip cell width (the wake cut's first-cell target)
+    if te == "sharp":
+        width = np.zeros_like(frac)       # one wake cut, shared by both sides
     yMid = 0.5 * (cornerA[1] + cornerB[1]) * (1.0 - frac)
     wakeA = np.column_stack([xTe + d, yMid - 0.5 * width])
     wakeB = np.column_stack([xTe + d, yMid + 0.5 * width])
@@ -200,7 +212,7 @@ def build(level, tc, cli, meanline):
     # to the mean strip cell width over WAKE_RAMP
     first = np.full(nI, y1)
     ramp = np.minimum(1.0, d / WAKE_RAMP)
-    wakeFirst = y1 + (width / nTe - y1) * ramp
+    wakeFirst = y1 + (cellAcross - y1) * ramp
     first[:iA + 1] = wakeFirst[::-1]
     first[iB:] = wakeFirst
 
@@ -224,13 +236,13 @@ def build(level, tc, cli, meanline):
     # strip behind the trailing-edge face: straight across between the two wake cuts, clustered
     # towards both cuts with the C-block's first-cell height there (continuous spacing)
     strip = np.zeros((nWake + 1, nTe + 1, 2))
-    for kk in range(nWake + 1):
+    for kk in range(nWake + 1 if te == "blunt" else 0):
         a, b = pts[iA - kk, 0], pts[iB + kk, 0]
         w = np.hypot(*(b - a))
         half = geometric(min(wakeFirst[kk], 0.5 * w / (nTe // 2)), 0.5 * w, nTe // 2)
         f = np.concatenate([half, w - half[::-1][1:]]) / w
         strip[kk] = a + f[:, None] * (b - a)
-    return dict(pts=pts, strip=strip, iA=iA, iB=iB, nI=nI, nNormal=nNormal, nTe=nTe,
+    return dict(sharp=(te == "sharp"), pts=pts, strip=strip, iA=iA, iB=iB, nI=nI, nNormal=nNormal, nTe=nTe,
                 nWake=nWake, nSide=nSide, y1=y1)
 
 
@@ -253,10 +265,41 @@ def quads(g, check=True):
     for i in range(nI - 1):
         for j in range(nJ - 1):
             cells.append([cId[i, j], cId[i + 1, j], cId[i + 1, j + 1], cId[i, j + 1]])
-    for kk in range(nWake):
-        for mm in range(nTe):
-            cells.append([sId[kk, mm], sId[kk + 1, mm], sId[kk + 1, mm + 1], sId[kk, mm + 1]])
+    if not g["sharp"]:
+        for kk in range(nWake):
+            for mm in range(nTe):
+                cells.append([sId[kk, mm], sId[kk + 1, mm], sId[kk + 1, mm + 1], sId[kk, mm + 1]])
     cells = np.array(cells)
+    edges = {"foil": [], "inlet": [], "outlet": [], "sides": []}
+    for i in range(iA, iB):
+        edges["foil"].append((cId[i, 0], cId[i + 1, 0]))
+    if not g["sharp"]:
+        for mm in range(nTe):
+            edges["foil"].append((sId[0, mm], sId[0, mm + 1]))
+    for i in range(nI - 1):
+        a, b = cId[i, nJ - 1], cId[i + 1, nJ - 1]
+        mid = 0.5 * (xy[a] + xy[b])
+        edges["inlet" if mid[0] < 1e-9 else "sides"].append((a, b))
+    for j in range(nJ - 1):
+        edges["outlet"].append((cId[0, j], cId[0, j + 1]))
+        edges["outlet"].append((cId[nI - 1, j], cId[nI - 1, j + 1]))
+    if not g["sharp"]:
+        for mm in range(nTe):
+            edges["outlet"].append((sId[nWake, mm], sId[nWake, mm + 1]))
+    else:
+        # sharp trailing edge: the two sides of the wake cut share their nodes (a C-grid);
+        # the strip's nodes and the duplicates go, the rest is renumbered
+        remap = np.arange(len(xy))
+        for kk in range(nWake + 1):
+            remap[cId[iB + kk, 0]] = cId[iA - kk, 0]
+        cells = remap[cells]
+        edges = {nm: [(remap[a], remap[b]) for a, b in e] for nm, e in edges.items()}
+        used = np.unique(cells)
+        newId = np.full(len(xy), -1)
+        newId[used] = np.arange(len(used))
+        xy = xy[used]
+        cells = newId[cells]
+        edges = {nm: [(newId[a], newId[b]) for a, b in e] for nm, e in edges.items()}
     # counter-clockwise; a mixed orientation would mean folded (inverted) cells
     p = xy[cells]
     area = 0.5 * np.sum(p[:, :, 0] * np.roll(p[:, :, 1], -1, axis=1)
@@ -266,20 +309,6 @@ def quads(g, check=True):
         area = -area
     if check and np.any(area <= 0):
         sys.exit("mesh2d: %d folded cells; the grid lines cross" % int(np.sum(area <= 0)))
-    edges = {"foil": [], "inlet": [], "outlet": [], "sides": []}
-    for i in range(iA, iB):
-        edges["foil"].append((cId[i, 0], cId[i + 1, 0]))
-    for mm in range(nTe):
-        edges["foil"].append((sId[0, mm], sId[0, mm + 1]))
-    for i in range(nI - 1):
-        a, b = cId[i, nJ - 1], cId[i + 1, nJ - 1]
-        mid = 0.5 * (xy[a] + xy[b])
-        edges["inlet" if mid[0] < 1e-9 else "sides"].append((a, b))
-    for j in range(nJ - 1):
-        edges["outlet"].append((cId[0, j], cId[0, j + 1]))
-        edges["outlet"].append((cId[nI - 1, j], cId[nI - 1, j + 1]))
-    for mm in range(nTe):
-        edges["outlet"].append((sId[nWake, mm], sId[nWake, mm + 1]))
     return xy, cells, edges, area
 
 
@@ -313,12 +342,12 @@ def writeMsh(path, xy, cells, edges):
 
 def main(argv=None):
     a = parseArgs(argv)
-    g = build(a.level, a.tc, a.cli, a.meanline)
+    g = build(a.level, a.tc, a.cli, a.meanline, a.te)
     xy, cells, edges, area = quads(g)
     os.makedirs(a.out, exist_ok=True)
     writeMsh(os.path.join(a.out, "section2d.msh"), xy, cells, edges)
-    summary = ("level=%d ratio=%.6f cells=%d area_m2=%.8e h_m=%.6e y1_m=%.4e n_side=%d n_te=%d "
-               "n_wake=%d n_normal=%d dz_m=%g" % (a.level, RATIO, len(cells), area.sum(),
+    summary = ("te=%s level=%d ratio=%.6f cells=%d area_m2=%.8e h_m=%.6e y1_m=%.4e n_side=%d n_te=%d "
+               "n_wake=%d n_normal=%d dz_m=%g" % (a.te, a.level, RATIO, len(cells), area.sum(),
                                                   math.sqrt(area.sum() / len(cells)), g["y1"],
                                                   g["nSide"], g["nTe"], g["nWake"],
                                                   g["nNormal"], DZ))

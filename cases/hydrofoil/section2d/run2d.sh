@@ -18,7 +18,7 @@
 # seconds). fluid-app must be on PATH (scripts/run and scripts/verify put build/bin there).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-out="" level=0 flow=laminar scheme=linearUpwind tol=1e-6 maxIt=6000 meshOnly=0 tc=0.12 cli=0.5
+out="" level=0 flow=laminar scheme=linearUpwind tol=1e-6 maxIt=6000 meshOnly=0 tc=0.12 cli=0.5 te=blunt
 die() { echo "error: section2d/run2d.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
     case "$1" in
@@ -31,6 +31,7 @@ while [ $# -gt 0 ]; do
         --mesh-only) meshOnly=1; shift ;;
         --tc) tc="$2"; shift 2 ;;
         --cli) cli="$2"; shift 2 ;;
+        --te) te="$2"; shift 2 ;;
         -h|--help) sed -n '3,18p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) die "unknown option '$1' (see --help)" ;;
     esac
@@ -48,7 +49,7 @@ log() { echo "[section2d $(date +%H:%M:%S)] $*"; }
 # ---- mesh: structured C-grid (mesh2d.py, Gmsh MSH 2.2) -> gmshToFoam ----------------------------
 mesh="$out/mesh"
 rm -rf "$mesh" "$out/case"; mkdir -p "$mesh"
-"$py" "$here/mesh2d.py" --level "$level" --out "$mesh" --tc "$tc" --cli "$cli" > "$mesh/log.mesh2d" 2>&1 \
+"$py" "$here/mesh2d.py" --level "$level" --out "$mesh" --tc "$tc" --cli "$cli" --te "$te" > "$mesh/log.mesh2d" 2>&1 \
     || { cat "$mesh/log.mesh2d"; die "mesh2d.py failed"; }
 case="$out/case"
 mkdir -p "$case"
