@@ -17,6 +17,11 @@
 #   --end SECONDS                           last time level of the viscoelastic run (3600)
 #   --timeout SECONDS                       longest wait for the peer (default 900)
 #   --mesh-from DIR                         reuse the meshes of an earlier run folder (DIR/mesh)
+#   --flow laminar|transition|turbulent     flow model (default laminar, the paper's): transition =
+#                                           Langtry-Menter kOmegaSSTLM, turbulent = k-omega SST
+#                                           (tools/setFlow.sh; README "Flow models")
+#   --scheme upwind|linearUpwind            convection of U and the turbulence fields (default
+#                                           upwind; linearUpwind: second order, bounded)
 #   --restart                               continue an interrupted run in this folder (same
 #                                           options): finished runs are kept, an interrupted one
 #                                           continues from results/<run>/checkpoint/latest
@@ -31,6 +36,7 @@ set -euo pipefail
 source "$FSI_ROOT/scripts/env.sh"
 
 preset=coarse material=both npf=2 nps=1 launch=mpmd tc=0.12 cli=0.5 end="" timeout=900 meshFrom="" restart=0
+flow=laminar scheme=upwind
 die() { echo "error: hydrofoil/run.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -44,13 +50,17 @@ while [ $# -gt 0 ]; do
     --end) end=$2; shift 2 ;;
     --timeout) timeout=$2; shift 2 ;;
     --mesh-from) meshFrom=$2; shift 2 ;;
+    --flow) flow=$2; shift 2 ;;
+    --scheme) scheme=$2; shift 2 ;;
     --restart) restart=1; shift ;;
-    -h|--help) sed -n '3,28p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '3,33p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) die "unknown option '$1' (see --help)" ;;
   esac
 done
 case "$material" in viscoelastic|baseline|relaxed|both|elastic) ;; *) die "--material must be viscoelastic, baseline, relaxed, both or elastic" ;; esac
 case "$launch" in mpmd|port) ;; *) die "--launch must be mpmd or port" ;; esac
+case "$flow" in laminar|transition|turbulent) ;; *) die "--flow must be laminar, transition or turbulent" ;; esac
+case "$scheme" in upwind|linearUpwind) ;; *) die "--scheme must be upwind or linearUpwind" ;; esac
 [[ "$npf" =~ ^[1-9][0-9]*$ && "$nps" =~ ^[1-9][0-9]*$ ]] || die "--np-fluid/--np-solid must be positive integers"
 command -v fluid-app >/dev/null && command -v solid-app >/dev/null || die "fluid-app/solid-app not on PATH (build first)"
 
@@ -102,6 +112,11 @@ for m in "${runs[@]}"; do
     cp -r "$run/mesh/fluid" "$fluid"
     rm -rf "$fluid"/processor*
     cp "$run/fluid/system/fsiDict" "$fluid/system/fsiDict"
+    # flow model and convection scheme (tools/setFlow.sh); meshes made before the RAS fields
+    # existed get them from fluid/0.orig
+    for f in "$run/fluid/0.orig"/*; do [ -e "$fluid/0/$(basename "$f")" ] || cp "$f" "$fluid/0/"; done
+    cp "$run/fluid/system/fvSchemes" "$run/fluid/system/fvSolution" "$fluid/system/"
+    "$run/tools/setFlow.sh" "$fluid" --flow "$flow" --scheme "$scheme" > /dev/null
     if [ "$npf" -gt 1 ]; then
       foamDictionary "$fluid/system/decomposeParDict" -entry numberOfSubdomains -set "$npf" >/dev/null
       foamDictionary "$fluid/system/decomposeParDict" -entry method -set hierarchical >/dev/null

@@ -13,9 +13,10 @@
 #                     rigid.estimateForceError; residuals are not required)
 #   --max-iterations  SIMPLE iteration cap (the run is reported as not converged if reached)
 # Writes DIR/mesh (the C-grid as MSH 2.2 and its parameters), DIR/case (OpenFOAM case, fields for ParaView in the last
-# time folder, postProcessing/ forces and yPlus) and DIR/section2d.csv (one row: level, cells,
-# flow, scheme, iterations, converged, C_L, C_D, C_M, y+ max / mean on the foil, CPU and wall
-# seconds). fluid-app must be on PATH (scripts/run and scripts/verify put build/bin there).
+# time folder, postProcessing/forcesFinal and yPlus) and DIR/section2d.csv (one row: level,
+# cells, flow, scheme, iterations, converged, C_L, C_D, C_M, y+ max / mean on the foil, CPU and
+# wall seconds of the solve, and for a solve that did not converge the C_L range over
+# SIMPLE_WINDOW (default 300) further iterations of simpleFoam: cl_min, cl_max). fluid-app must be on PATH (scripts/run and scripts/verify put build/bin there).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 out="" level=0 flow=laminar scheme=linearUpwind tol=1e-6 maxIt=6000 meshOnly=0 tc=0.12 cli=0.5 te=blunt
@@ -111,6 +112,18 @@ t0=$(date +%s.%N)
 t1=$(date +%s.%N)
 ( cd "$case" && simpleFoam -postProcess -latestTime > log.postProcess 2>&1 ) \
     || { tail -20 "$case/log.postProcess"; die "simpleFoam -postProcess failed (see $case/log.postProcess)"; }
+rm -rf "$case/postProcessing/forcesFinal"
+mv "$case/postProcessing/forces" "$case/postProcessing/forcesFinal"
+# not converged: SIMPLE_WINDOW more iterations with Debian's simpleFoam and the forces function
+# object, to show how far the forces still move (C_L range, columns cl_min / cl_max)
+window=${SIMPLE_WINDOW:-300}
+if ! awk -F, 'NR == 2 && $11 == 1 {ok = 1} END {exit !ok}' "$case/postProcessing/fsi/forces.csv"; then
+    log "not converged within $maxIt iterations: $window more with simpleFoam to record the force range"
+    last=$(foamListTimes -case "$case" -latestTime 2>/dev/null | tail -1)
+    foamDictionary "$case/system/controlDict" -entry endTime -set $((last + window)) > /dev/null
+    foamDictionary "$case/system/controlDict" -entry writeInterval -set $((last + window)) > /dev/null
+    ( cd "$case" && simpleFoam > log.simpleFoam.window 2>&1 ) || log "simpleFoam window failed (see log.simpleFoam.window)"
+fi
 "$py" - "$case" "$level" "$cells" "$flow" "$scheme" "$t0" "$t1" "$out/section2d.csv" <<'EOP'
 import csv, glob, math, os, re, sys
 case, level, cells, flow, scheme, t0, t1, outCsv = sys.argv[1:]
@@ -119,7 +132,7 @@ rho, U, c, dz = 998.2, 2.0, 0.05, 0.001
 q = 0.5 * rho * U * U
 fx, fy = float(row["Fx"]), float(row["Fy"])
 # moment about the quarter chord from the forces function object (last line: total moment)
-mom = sorted(glob.glob(os.path.join(case, "postProcessing/forces/*/moment.dat")))[-1]
+mom = sorted(glob.glob(os.path.join(case, "postProcessing/forcesFinal/*/moment.dat")))[-1]
 last = [l for l in open(mom) if l.strip() and not l.startswith("#")][-1]
 nums = [float(v) for v in re.findall(r"[-+]?\d+\.?\d*(?:[eE][-+]?\d+)?", last)]
 mz = nums[3]                      # time, total (Mx My Mz), ...
@@ -135,10 +148,22 @@ if yp:
     m = re.search(r"min = ([-+\deE.]+), max = ([-+\deE.]+), average = ([-+\deE.]+)", yp[-1])
     if m:
         ypMin, ypMax, ypMean = map(float, m.groups())
+clMin = clMax = float("nan")
+window = [p for p in glob.glob(os.path.join(case, "postProcessing/forces/*/force.dat"))
+          if os.path.getsize(p) > 0]
+if window:
+    fys = []
+    for l in open(sorted(window)[-1]):
+        if l.strip() and not l.startswith("#"):
+            v = [float(x) for x in re.findall(r"[-+]?\d+\.?\d*(?:[eE][-+]?\d+)?", l)]
+            fys.append(v[2])
+    if len(fys) > 1:
+        clMin, clMax = -max(fys) / (q * c * dz), -min(fys) / (q * c * dz)
 r = dict(level=level, cells=cells, flow=flow, scheme=scheme,
          iterations=row["simpleIterations"], converged=row["converged"],
          C_L=-fy / (q * c * dz), C_D=fx / (q * c * dz), C_M=mz / (q * c * c * dz),
-         yplus_max=ypMax, yplus_mean=ypMean, cpu_s=cpu, wall_s=float(t1) - float(t0))
+         yplus_max=ypMax, yplus_mean=ypMean, cpu_s=cpu, wall_s=float(t1) - float(t0),
+         cl_min=clMin, cl_max=clMax)
 with open(outCsv, "w") as f:
     f.write(",".join(r) + "\n")
     f.write(",".join(("%.8g" % v) if isinstance(v, float) else str(v) for v in r.values()) + "\n")

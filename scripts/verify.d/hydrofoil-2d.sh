@@ -1,0 +1,104 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# 2-D section of the hydrofoil (cases/hydrofoil/section2d): mesh study of C_L, C_D and C_M on the
+# structured C-grid levels (every length refined by sqrt 2 per level), rigid steady flow with
+# fluid-app -rigid, second-order bounded convection (linearUpwind, cell-limited gradients).
+# Per flow model: observed order, Richardson extrapolation and GCI_fine (Celik et al. 2008 /
+# ASME V&V 20) from the three finest levels -> gci.csv (quantity,model,levels,observed_order,
+# extrapolated,gci_fine_pct, then convergence,asymptotic_ratio,rel_diff_fine).
+# error_vs_runtime.csv: the standard columns; reference = the extrapolated value where the
+# three finest levels converge monotonically, else the finest level (its rows then have
+# rel_error 0); extra columns cpu_s, iterations, converged, model, te.
+# Steadiness evidence (steadiness.csv): level-0 solves of the models and trailing edges that
+# have no steady state; their C_L range over 300 further SIMPLE iterations.
+# Environment:
+#   H2D_LEVELS     levels, coarse to fine (default "0 1 2 3 4")
+#   H2D_MODELS     flow models of the mesh study (default "turbulent")
+#   H2D_TE         trailing edge of the mesh study: sharp | blunt (default sharp: see README)
+#   H2D_EVIDENCE   1 (default): also the steadiness runs (laminar, transition, blunt turbulent)
+#   H2D_RUNS       run folders (default $FSI_VERIFY_DIR/runs, not tracked)
+#   H2D_REUSE=1    keep finished runs (RUN/section2d.csv) instead of redoing them
+set -euo pipefail
+: "${FSI_VERIFY_DIR:?run through scripts/verify hydrofoil-2d}"
+root=${FSI_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}
+export PATH=${FSI_BUILD_DIR:-$root/build}/bin:$PATH
+run2d=$root/cases/hydrofoil/section2d/run2d.sh
+levels=${H2D_LEVELS:-"0 1 2 3 4"}
+models=${H2D_MODELS:-turbulent}
+te=${H2D_TE:-sharp}
+runs=${H2D_RUNS:-$FSI_VERIFY_DIR/runs}
+reuse=${H2D_REUSE:-0}
+mkdir -p "$runs"
+
+# one solve: run2d.sh into RUN unless reusable; echo its CSV row prefixed by te and h
+solve() {  # model level te maxIterations
+    local r=$runs/$1-$3-L$2
+    if [ "$reuse" = 1 ] && [ -f "$r/section2d.csv" ]; then
+        echo "hydrofoil-2d: reusing $r" >&2
+    else
+        echo "hydrofoil-2d: $1 level $2 te $3 ($(date +%H:%M:%S), load $(cut -d' ' -f1 /proc/loadavg))" >&2
+        "$run2d" --out "$r" --level "$2" --flow "$1" --te "$3" --max-iterations "$4" > "$r.log" 2>&1 ||
+            { tail -5 "$r.log" >&2; echo "error: hydrofoil-2d: $1 level $2 failed (see $r.log)" >&2; exit 1; }
+    fi
+    local h; h=$(sed -n 's/.* h_m=\([^ ]*\).*/\1/p' "$r/mesh/section2d-mesh.txt")
+    echo "$3,$h,$(sed -n 2p "$r/section2d.csv"),$(cut -d' ' -f1 /proc/loadavg)"
+}
+
+raw=$FSI_VERIFY_DIR/levels.csv
+echo "te,h_m,level,cells,flow,scheme,iterations,converged,C_L,C_D,C_M,yplus_max,yplus_mean,cpu_s,wall_s,cl_min,cl_max,load1" > "$raw"
+for model in $models; do
+    for level in $levels; do
+        solve "$model" "$level" "$te" 8000 >> "$raw"
+        tail -n 1 "$raw"
+    done
+done
+if [ "${H2D_EVIDENCE:-1}" = 1 ]; then
+    steady=$FSI_VERIFY_DIR/steadiness.csv
+    head -n 1 "$raw" > "$steady"
+    for spec in "laminar 0 sharp" "transition 0 sharp" "turbulent 0 blunt" "turbulent 1 blunt"; do
+        set -- $spec
+        solve "$1" "$2" "$3" 4000 >> "$steady"
+        tail -n 1 "$steady"
+    done
+fi
+
+"$FSI_PYTHON" - "$raw" "$FSI_VERIFY_DIR" "$root/scripts" <<'PY'
+import csv, math, os, sys
+raw, outDir, scripts = sys.argv[1:]
+sys.path.insert(0, scripts)
+from gci import gci
+rows = list(csv.DictReader(open(raw)))
+gciRows, err = [], []
+for model in sorted({r["flow"] for r in rows}):
+    rs = sorted((r for r in rows if r["flow"] == model), key=lambda r: float(r["h_m"]), reverse=True)
+    for q in ("C_L", "C_D", "C_M"):
+        ref, res = None, None
+        if len(rs) >= 3 and all(r["converged"] == "1" for r in rs[-3:]):
+            res = gci([float(r["h_m"]) for r in rs[-3:]], [float(r[q]) for r in rs[-3:]])
+            gciRows.append([q, model, " ".join(r["level"] for r in rs[-3:]),
+                            "%.4g" % res["observed_order"], "%.8g" % res["extrapolated"],
+                            "%.4g" % res["gci_fine_pct"], res["convergence"],
+                            "%.4g" % res["asymptotic_ratio"], "%.4g" % res["rel_diff_fine"]])
+            if res["convergence"] == "monotone":
+                ref = res["extrapolated"]
+        if ref is None:
+            ref = float(rs[-1][q])
+        for r in rs:
+            v = float(r[q])
+            err.append([r["level"], r["cells"], 1, r["wall_s"], q, "%.8g" % v, "%.8g" % ref,
+                        "%.6e" % (abs(v - ref) / abs(ref)), r["cpu_s"], r["iterations"],
+                        r["converged"], model, r["te"]])
+with open(os.path.join(outDir, "gci.csv"), "w") as f:
+    f.write("quantity,model,levels,observed_order,extrapolated,gci_fine_pct,convergence,"
+            "asymptotic_ratio,rel_diff_fine\n")
+    for g in gciRows:
+        f.write(",".join(g) + "\n")
+with open(os.path.join(outDir, "error_vs_runtime.csv"), "w") as f:
+    f.write("level,size,cores,wall_s,quantity,value,reference,rel_error,cpu_s,iterations,"
+            "converged,model,te\n")
+    for e in err:
+        f.write(",".join(str(v) for v in e) + "\n")
+for g in gciRows:
+    print("hydrofoil-2d: %s %s levels %s: order %s, extrapolated %s, GCI_fine %s %% (%s, "
+          "asymptotic ratio %s)" % tuple(g[:8]))
+PY
