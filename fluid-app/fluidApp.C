@@ -87,6 +87,7 @@ int main(int argc, char* argv[])
         scalar firstU = -1, firstP = -1;
         vector previousForce(Zero);
         DynamicList<scalar> forceChanges;   // |F_k - F_k-1| of this solve
+        label stable = 0;                   // consecutive iterations meeting the criteria
         for (label iter = 1; iter <= ctrl.maxIterations; ++iter)
         {
             ++runTime;
@@ -146,7 +147,8 @@ int main(int argc, char* argv[])
                 }
                 forceOk = iter > 1 && error <= ctrl.forceTolerance*mag(F);
             }
-            if (residualOk && forceOk && iter >= ctrl.minIterations)
+            stable = (residualOk && forceOk) ? stable + 1 : 0;
+            if (stable >= ctrl.stableIterations && iter >= ctrl.minIterations)
             {
                 result.converged = true;
                 Info<< "SIMPLE converged in " << iter << " iterations" << nl << endl;

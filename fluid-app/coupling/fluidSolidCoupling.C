@@ -541,11 +541,17 @@ Foam::fluidSolidCoupling::SolveControls Foam::fluidSolidCoupling::controls
     c.minIterations = d.getOrDefault<label>("minIterations", 1);
     c.residualRequired = d.getOrDefault<bool>("residualRequired", true);
     c.estimateError = d.getOrDefault<bool>("estimateForceError", false);
-    if (c.maxIterations < 1 || c.minIterations < 1 || c.minIterations > c.maxIterations)
+    c.stableIterations = d.getOrDefault<label>("stableIterations", 1);
+    if
+    (
+        c.maxIterations < 1 || c.minIterations < 1 || c.minIterations > c.maxIterations
+     || c.stableIterations < 1
+    )
     {
         FatalIOErrorInFunction(dict_)
-            << "system/fsiDict: " << subDictName << ".maxIterations and minIterations must be"
-            << " >= 1 with minIterations <= maxIterations" << exit(FatalIOError);
+            << "system/fsiDict: " << subDictName << ".maxIterations, minIterations and"
+            << " stableIterations must be >= 1 with minIterations <= maxIterations"
+            << exit(FatalIOError);
     }
     if (!c.residualRequired && c.forceTolerance <= 0)
     {

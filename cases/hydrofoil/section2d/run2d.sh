@@ -9,8 +9,9 @@
 #       [--tc 0.12] [--cli 0.5]
 #
 #   --level K         mesh level (0 coarsest; every level refines all lengths by sqrt 2)
-#   --tolerance T     stop when the estimated force error left is below T |F| (fsiDict
-#                     rigid.estimateForceError; residuals are not required)
+#   --tolerance T     stop when the estimated force error left is below T |F| for 100
+#                     consecutive iterations (fsiDict rigid.estimateForceError,
+#                     stableIterations; residuals are not required)
 #   --max-iterations  SIMPLE iteration cap (the run is reported as not converged if reached)
 # Writes DIR/mesh (the C-grid as MSH 2.2 and its parameters), DIR/case (OpenFOAM case, fields for ParaView in the last
 # time folder, postProcessing/forcesFinal and yPlus) and DIR/section2d.csv (one row: level,
@@ -49,7 +50,7 @@ log() { echo "[section2d $(date +%H:%M:%S)] $*"; }
 
 # ---- mesh: structured C-grid (mesh2d.py, Gmsh MSH 2.2) -> gmshToFoam ----------------------------
 mesh="$out/mesh"
-rm -rf "$mesh" "$out/case"; mkdir -p "$mesh"
+rm -rf "$mesh" "$out/case" "$out/section2d.csv"; mkdir -p "$mesh"
 "$py" "$here/mesh2d.py" --level "$level" --out "$mesh" --tc "$tc" --cli "$cli" --te "$te" > "$mesh/log.mesh2d" 2>&1 \
     || { cat "$mesh/log.mesh2d"; die "mesh2d.py failed"; }
 case="$out/case"
@@ -96,6 +97,7 @@ fd system/fsiDict rigid/forceTolerance "$tol"
 fd system/fsiDict rigid/residualRequired false
 fd system/fsiDict rigid/estimateForceError true
 fd system/fsiDict rigid/minIterations 100
+fd system/fsiDict rigid/stableIterations 100   # a pause of a slow oscillation does not stop it
 fd system/controlDict endTime "$maxIt"
 fd system/controlDict writeInterval "$maxIt"
 fd system/controlDict functions/forces/CofR "(0.3685 0 0)"
