@@ -206,6 +206,9 @@ def build(level, tc, cli, meanline, te="blunt"):
             tgt[front] = resample(path, f)          # from X_SPLIT towards the LE
         else:
             tgt[front] = resample(path, 1.0 - f)    # from the LE towards X_SPLIT
+        # the inlet corner is a node (the boundary must not cut the tunnel's corner)
+        corner = np.array([0.0, sign * TUNNEL_W / 2])
+        tgt[np.argmin(np.hypot(*(tgt - corner).T))] = corner
         outer[idx] = tgt
 
     # first-cell height along the C-line: y1 on the foil; along the wake cut it grows from y1
