@@ -5,14 +5,18 @@
 #include <mpi.h>
 
 #include <memory>
+#include <optional>
+#include <string>
 #include <vector>
 
 namespace fsi::linalg
 {
 
-// MUMPS ICNTL(7) values. Debian's MUMPS 5.5 has neither METIS nor SCOTCH compiled in:
-// Metis is computed by this wrapper (METIS_NodeND -> PERM_IN); Scotch falls back to MUMPS'
-// automatic choice.
+// MUMPS ICNTL(7) values. Debian's MUMPS 5.5 (libmumps-5.5) has neither METIS nor SCOTCH
+// compiled in: Metis is computed by this wrapper (METIS_NodeND on the graph compressed to
+// supervariables, e.g. the 3 dofs of a node -> PERM_IN, ICNTL(7) = 1); Scotch falls back to
+// MUMPS' automatic choice. The analysis is sequential (ICNTL(28) = 1) on any number of ranks:
+// parallel ordering (ICNTL(28) = 2) needs PT-SCOTCH or ParMETIS inside MUMPS.
 enum class Ordering : int
 {
     Amd = 0,
@@ -24,6 +28,16 @@ enum class Ordering : int
     Automatic = 7
 };
 
+// Block low-rank (BLR) factorization, MUMPS ICNTL(35).
+enum class LowRank : int
+{
+    Off = 0,  // full-rank factorization (ICNTL(35) = 0)
+    On = 1,   // BLR factorization and solve (ICNTL(35) = 2)
+    Auto = 2  // On when the matrix has at least lowRankMinSize rows, Off below
+};
+
+// Every field's default is the documented one (config/solid.example.yaml, linear_solver block;
+// solid-app/src/linalg/README.md). validate() checks them (the constructor calls it).
 struct DirectSolverOptions
 {
     bool symmetric = true;         // symmetric matrix (LDL^T); false: general LU
@@ -34,6 +48,21 @@ struct DirectSolverOptions
     int ordering = static_cast<int>(Ordering::Metis); // ICNTL(7)
     int memoryRelaxationPercent = 30;                 // ICNTL(14); raised on INFOG(1) = -9
     int verbosity = 0;                                // 0 silent ... 4 MUMPS diagnostics
+    // BLR compression (ICNTL(35), ICNTL(36), CNTL(7)). The factor is approximate to about
+    // lowRankTolerance (relative); every solve with a BLR factor is checked and refined (below).
+    LowRank lowRank = LowRank::Auto;
+    int lowRankMinSize = 100000;    // Auto: BLR for n >= this
+    double lowRankTolerance = 1e-9; // CNTL(7), the BLR dropping threshold
+    bool lowRankUcfs = true;        // ICNTL(36): true = UCFS (compress before the solve of the
+                                    // panel: fewer flops), false = UFSC (MUMPS' default)
+    // Residual check after a BLR solve: iterative refinement x += A_BLR^-1 (b - A x) until
+    // |b - A x| <= refinementTolerance |b|, at most maxRefinementSteps steps; when it misses,
+    // the matrix is factorized again without BLR (and stays full-rank for this solver).
+    double refinementTolerance = 1e-10;
+    int maxRefinementSteps = 10;
+    // BLAS (OpenBLAS) and OpenMP threads per MPI rank, set when the solver is created;
+    // 0 = leave them to the environment (OPENBLAS_NUM_THREADS, OMP_NUM_THREADS).
+    int threadsPerRank = 1;
     // Symmetric only: when the values change but the pattern does not, first solve with
     // conjugate gradients preconditioned by the existing (stale) factorization; factorize only
     // when CG misses reuseTolerance within reuseMaxIterations, or needed more than
@@ -43,7 +72,44 @@ struct DirectSolverOptions
     double reuseTolerance = 1e-10;    // |b - A x| <= tol |b|
     int reuseMaxIterations = 25;
     int refactorAfterIterations = 12;
+
+    // The first value out of range: key as the solid config spells it (under linear_solver),
+    // the value and the fix; nullopt when all are valid.
+    struct Error
+    {
+        std::string key, value, fix;
+    };
+    std::optional<Error> firstError() const;
+    // Throws std::invalid_argument, one line: "linear_solver.<key> = <value> is invalid: <fix>".
+    void validate() const;
 };
+
+// Wall and CPU seconds of the phases (summed over the calls; CPU of this rank's process), and
+// what MUMPS reported for the last analysis/factorization.
+struct DirectSolverStatistics
+{
+    double analysisSeconds = 0.0, factorizationSeconds = 0.0, solveSeconds = 0.0;
+    double analysisCpuSeconds = 0.0, factorizationCpuSeconds = 0.0, solveCpuSeconds = 0.0;
+    double orderingSeconds = 0.0;       // part of analysisSeconds: this wrapper's METIS (rank 0)
+    long long estimatedMemoryMb = 0;    // INFOG(17): total over ranks, full-rank estimate
+    long long factorizationMemoryMb = 0; // INFOG(19): total over ranks, used by the factorization
+    long long maxRankMemoryMb = 0;      // INFOG(18): largest rank
+    double fullRankFlops = 0.0;         // RINFOG(3): estimated elimination flops, full rank
+    double lowRankFlops = 0.0;          // RINFOG(14): flops of the BLR factorization (0: off)
+    bool lowRankActive = false;         // the last factorization used BLR
+    int lowRankFallbacks = 0;           // BLR solves that missed the tolerance -> full rank
+    int refinementSteps = 0;            // total refinement steps over all solves
+    double lastRelativeResidual = -1.0; // |b - A x| / |b| of the last checked solve (-1: none)
+};
+
+// BLAS library in use and its thread count, e.g. "OpenBLAS 0.3.21 ... Haswell SINGLE_THREADED"
+// ("reference or other BLAS" when it is not OpenBLAS). For logs and benchmarks.
+std::string blasDescription();
+
+// The options in the solid config's words, one line, e.g. "ordering metis, low_rank auto
+// (>= 100000 rows, tolerance 1e-09, ucfs), refinement 1e-10 x 10, memory_relaxation 30 %,
+// threads 1".
+std::string describe(const DirectSolverOptions& options);
 
 // Collective on comm: every rank calls every method (and the destructor, which must run
 // before MPI_Finalize) in the same order. Argument errors (sizes, indices) are checked
@@ -100,6 +166,9 @@ public:
     int negativePivotCount() const { return negativePivots_; }
     // Entries in the factors of the last factorization (INFOG(29)): fill, for benchmarks.
     long long factorEntryCount() const { return factorEntries_; }
+    // Phase timings, memory and BLR figures (see DirectSolverStatistics).
+    const DirectSolverStatistics& statistics() const { return stats_; }
+    const DirectSolverOptions& options() const { return options_; }
     int size() const { return n_; }
     MPI_Comm communicator() const { return comm_; }
 
@@ -110,6 +179,11 @@ private:
     // CG preconditioned by the stale factorization; false (b untouched) when it misses the
     // tolerance. Collective; b/x significant on rank 0.
     bool solveWithStaleFactor(std::vector<double>& rhsAndSolution);
+    // With a BLR factor: residual check and iterative refinement of x for b (rank 0 data);
+    // true when |b - A x| <= refinementTolerance |b|. Collective.
+    bool refine(const std::vector<double>& b, std::vector<double>& x);
+    void analyse();
+    void factorizeNumerically();
     struct Handle; // owns DMUMPS_STRUC_C (dmumps_c.h only in the .cpp)
     std::unique_ptr<Handle> handle_;
     MPI_Comm comm_;
@@ -133,6 +207,8 @@ private:
     bool refreshFactor_ = false; // the last CG needed many iterations: factorize next time
     int negativePivots_ = 0;
     long long factorEntries_ = 0;
+    bool lowRankDisabled_ = false; // a BLR solve missed the tolerance: full rank from then on
+    DirectSolverStatistics stats_;
 };
 
 } // namespace fsi::linalg
