@@ -497,7 +497,7 @@ void SparseDirectSolver::analyse()
     analysed_ = true;
     patternChanged_ = false;
     stats_.estimatedMemoryMb = handle_->infog(17);
-    stats_.fullRankFlops = handle_->rinfog(3);
+    stats_.fullRankFlops = handle_->rinfog(1); // estimate; the factorization sets RINFOG(3)
 }
 
 void SparseDirectSolver::factorizeNumerically()
@@ -527,6 +527,7 @@ void SparseDirectSolver::factorizeNumerically()
     // INFOG(29) < 0 means millions of entries
     factorEntries_ = handle_->infog(29) >= 0 ? handle_->infog(29) : -1000000LL * handle_->infog(29);
     stats_.lowRankActive = handle_->icntl(35) != 0;
+    stats_.fullRankFlops = handle_->rinfog(3);
     stats_.lowRankFlops = stats_.lowRankActive ? handle_->rinfog(14) : 0.0;
     stats_.maxRankMemoryMb = handle_->infog(18);
     stats_.factorizationMemoryMb = handle_->infog(19);

@@ -94,7 +94,8 @@ struct DirectSolverStatistics
     long long estimatedMemoryMb = 0;    // INFOG(17): total over ranks, full-rank estimate
     long long factorizationMemoryMb = 0; // INFOG(19): total over ranks, used by the factorization
     long long maxRankMemoryMb = 0;      // INFOG(18): largest rank
-    double fullRankFlops = 0.0;         // RINFOG(3): estimated elimination flops, full rank
+    double fullRankFlops = 0.0;         // RINFOG(3): elimination flops of a full-rank factor
+                                        // (after analysis: the estimate RINFOG(1))
     double lowRankFlops = 0.0;          // RINFOG(14): flops of the BLR factorization (0: off)
     bool lowRankActive = false;         // the last factorization used BLR
     int lowRankFallbacks = 0;           // BLR solves that missed the tolerance -> full rank
