@@ -11,9 +11,10 @@
 // Not a test: run by bench/solid-scaling/run.sh, one process per case (peak memory per case).
 //
 // usage: solid-bench [--dofs N | --cells NX NY NZ] [--aspect A:B:C] [--low-rank auto|on|off]
-//                    [--tolerance EPS] [--ordering metis|amd|amf|pord|qamd|auto] [--threads T]
+//                    [--tolerance EPS] [--ordering metis|scotch|ptscotch|amd|amf|pord|qamd|auto] [--threads T]
 //                    [--nu NU] [--verbosity V]
 #include "fe/StructuralSolver.hpp"
+#include "linalg/CsrPattern.hpp"
 #include "linalg/SparseDirectSolver.hpp"
 #include "material/LinearElastic.hpp"
 #include "mesh/Mesh.hpp"
@@ -44,6 +45,7 @@ struct Args
     linalg::DirectSolverOptions solver;
     std::string orderingName = "metis";
     double nu = 0.49;
+    bool estimate = false; // analysis only: MUMPS' memory and flop estimates
 };
 
 [[noreturn]] void usage(const std::string& what)
@@ -51,13 +53,14 @@ struct Args
     throw std::invalid_argument(
         "solid-bench: " + what +
         "; usage: solid-bench [--dofs N | --cells NX NY NZ] [--aspect A:B:C] "
-        "[--low-rank auto|on|off] [--tolerance EPS] [--ordering metis|amd|amf|pord|qamd|auto] "
+        "[--low-rank auto|on|off] [--tolerance EPS] [--ordering metis|scotch|ptscotch|amd|amf|pord|qamd|auto] "
         "[--threads T] [--nu NU] [--verbosity V]");
 }
 
 Args parse(int argc, char** argv)
 {
     Args a;
+    a.solver.checkResidual = true; // the residual of every variant, in the same norm
     for (int i = 1; i < argc; ++i)
     {
         const std::string key = argv[i];
@@ -97,9 +100,10 @@ Args parse(int argc, char** argv)
         else if (key == "--ordering")
         {
             a.orderingName = next();
-            const char* names[] = {"amd", "", "amf", "", "pord", "metis", "qamd", "auto"};
+            const char* names[] = {"amd",   "",     "amf",  "scotch",  "pord",
+                                   "metis", "qamd", "auto", "ptscotch"};
             int found = -1;
-            for (int k = 0; k < 8; ++k)
+            for (int k = 0; k < 9; ++k)
                 if (a.orderingName == names[k])
                     found = k;
             if (found < 0)
@@ -110,6 +114,10 @@ Args parse(int argc, char** argv)
             a.solver.threadsPerRank = std::stoi(next());
         else if (key == "--nu")
             a.nu = std::stod(next());
+        else if (key == "--no-check")
+            a.solver.checkResidual = false;
+        else if (key == "--estimate")
+            a.estimate = true;
         else if (key == "--verbosity")
             a.solver.verbosity = std::stoi(next());
         else
@@ -221,6 +229,39 @@ int main(int argc, char** argv)
         const Args args = parse(argc, argv);
         const double h = 0.01; // [m]
         const mesh::Mesh mesh = boxMesh(args.cells, h);
+        if (args.estimate)
+        {
+            // the solver's dof numbering: 3 per node off the clamped face, node by node
+            std::vector<int> equation(3 * mesh.numNodes(), -1);
+            int n = 0;
+            for (int a = 0; a < mesh.numNodes(); ++a)
+                if (mesh.nodes(0, a) > 1e-12)
+                    for (int c = 0; c < 3; ++c)
+                        equation[3 * a + c] = n++;
+            std::vector<int> offsets{0}, dofs;
+            for (int c = rank; c < mesh.cells.size(); c += ranks)
+            {
+                for (int k = 0; k < mesh.cells.numNodes(c); ++k)
+                    for (int d = 0; d < 3; ++d)
+                        dofs.push_back(equation[3 * mesh.cells.nodes(c)[k] + d]);
+                offsets.push_back(static_cast<int>(dofs.size()));
+            }
+            linalg::DirectSolverStatistics st;
+            {
+                const auto pattern = linalg::CsrPattern::fromElements(n, offsets, dofs, true);
+                linalg::SparseDirectSolver solver(MPI_COMM_WORLD, args.solver);
+                solver.setPattern(n, pattern.tripletRows(), pattern.tripletColumns());
+                solver.analyze();
+                st = solver.statistics();
+            }
+            if (rank == 0)
+                std::printf("solid-bench: estimate dofs=%d cells=%d,%d,%d mumps_mb=%lld "
+                            "flops=%.3g analysis_s=%.2f\n",
+                            n, args.cells[0], args.cells[1], args.cells[2], st.estimatedMemoryMb,
+                            st.fullRankFlops, st.analysisSeconds);
+            MPI_Finalize();
+            return 0;
+        }
         const double E = 47.4e6, nu = args.nu;
         const material::LinearElastic law(E / (3 * (1 - 2 * nu)), E / (2 * (1 + nu)));
         fe::ProblemDefinition problem;
@@ -264,20 +305,32 @@ int main(int argc, char** argv)
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         if (rank == 0)
         {
+            std::string history;
+            for (std::size_t k = 0; k < st.lastResiduals.size(); ++k)
+            {
+                char text[48];
+                std::snprintf(text, sizeof text, "%s%.1e(%.0e)", history.empty() ? "" : "/",
+                              st.lastResiduals[k], st.lastBackwardErrors[k]);
+                history += text;
+            }
+            if (history.empty())
+                history = "-";
             std::string blas = linalg::blasDescription();
             blas = blas.rfind("OpenBLAS", 0) == 0 ? "openblas" : "reference";
             std::printf("solid-bench: dofs=%d ranks=%d factor_s=%.2f solve_s=%.3f rss_mb=%.0f "
                         "analysis_s=%.2f ordering_s=%.2f factor_cpu_s=%.2f cpu_s=%.2f blr=%s "
                         "tol=%.0e ordering=%s residual=%.1e refine=%d fallback=%d mumps_mb=%lld "
                         "flops=%.3g blr_flops=%.3g newton=%d cells=%d,%d,%d assembly_s=%.2f "
-                        "wall_s=%.2f blas=%s threads=%d\n",
+                        "wall_s=%.2f blas=%s threads=%d entries=%lld blr_entries=%lld "
+                        "residuals=%s\n",
                         dofs, ranks, factorS, solveS, rssMb, analysisS, orderingS, factorCpu, cpu,
                         st.lowRankActive ? "on" : "off",
                         st.lowRankActive ? args.solver.lowRankTolerance : 0.0,
                         args.orderingName.c_str(), residual[0], st.refinementSteps,
                         st.lowRankFallbacks, st.factorizationMemoryMb, st.fullRankFlops,
                         st.lowRankFlops, newton, args.cells[0], args.cells[1], args.cells[2],
-                        assemblyS, wall, blas.c_str(), args.solver.threadsPerRank);
+                        assemblyS, wall, blas.c_str(), args.solver.threadsPerRank,
+                        st.factorEntries, st.lowRankFactorEntries, history.c_str());
             std::fflush(stdout);
         }
     }

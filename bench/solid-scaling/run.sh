@@ -1,42 +1,67 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
-# Solid solver scaling: time per level (assembly / MUMPS), peak memory per rank and
-# factorizations per level against DOFs, on 1 and 2 ranks. Tet10 cantilever meshes
-# (cases/solid/cantilever/beam.geo, n = 2, 4, 6, 8 cells across: ~6 k ... ~280 k DOFs).
-# usage: bench/solid-scaling/run.sh [OUT_DIR]   env: SCALING_LEVELS ("2 4 6 8"), SCALING_RANKS ("1 2"),
-#        SOLID_APP (default $FSI_BUILD_DIR/bin/solid-app). Prints a table; writes OUT_DIR/scaling.csv.
+# Solid linear-solver scaling: MUMPS factorization / solve time, CPU time, peak memory and
+# accuracy against DOFs, on 1 and 2 ranks, per linear-solver setting, with solid-bench (a
+# structured Tet10 box of the fine hydrofoil's proportions, span:chord:thickness = 16:8:1 cells,
+# clamped at one end, gravity; one static solve). One line per case:
+#   solid-bench: dofs=N ranks=R factor_s=X solve_s=X rss_mb=X analysis_s=X ... blr=on|off ...
+# Variants (SCALING_VARIANTS):
+#   default    this branch's defaults (METIS on the supervariable graph, OpenBLAS, BLR per
+#              low_rank auto)
+#   fullrank   the same with low_rank off
+#   blr        low_rank on at SCALING_BLR_TOLERANCE (needs MUMPS with SCOTCH)
+#   pord       MUMPS' own PORD ordering instead of METIS (low_rank off)
+#   old        the settings before issue 14: reference BLAS (LD_LIBRARY_PATH to Debian's
+#              libblas3/liblapack3), low_rank off
+# Sizes: SCALING_SIZES are k for 16k x 8k x k cells (k = 2 3 4 5 6 7: 32 k, 99 k, 225 k, 428 k,
+# 726 k, 1.14 M dofs) or explicit NX,NY,NZ cell triples. Cases whose MUMPS estimate (analysis
+# only, solid-bench --estimate) exceeds SCALING_MAX_MB (default 9000, total over ranks) are
+# reported as skipped, not run. The "old" variant runs only up to SCALING_OLD_MAX_DOFS (250000).
+# usage: bench/solid-scaling/run.sh [OUT_DIR]   (prints the lines; OUT_DIR/bench.log keeps them)
+#   env: SCALING_SIZES ("2 3 4 5"), SCALING_RANKS ("1 2"), SCALING_VARIANTS ("default fullrank
+#        blr pord old"), SCALING_BLR_TOLERANCE (1e-7), SCALING_MAX_MB, SOLID_BENCH
+#        (default $FSI_BUILD_DIR/bin/solid-bench). Runs niced (nice -n 5), one case at a time.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
 source "$root/scripts/env.sh"
-app=${SOLID_APP:-$FSI_BUILD_DIR/bin/solid-app}
+bench=${SOLID_BENCH:-$FSI_BUILD_DIR/bin/solid-bench}
 out=${1:-$root/runs/solid-scaling}
 mkdir -p "$out"
-csv=$out/scaling.csv
-echo "n,dofs,ranks,wall_s,first_level_assembly_s,first_level_linear_s,later_level_linear_s,max_rss_mb_per_rank,analyses,factorizations,levels" > "$csv"
-printf "%6s %8s %5s %8s %10s %10s %10s %10s %6s\n" n dofs ranks wall_s asm_l0_s mumps_l0_s mumps_l3_s rss_MB fact/lv
-for n in ${SCALING_LEVELS:-2 4 6 8}; do
-  run=$out/n$n
-  mkdir -p "$run"
-  [ -f "$run/beam.msh" ] || gmsh -3 -order 2 -setnumber n "$n" "$root/cases/solid/cantilever/beam.geo" \
-                            -o "$run/beam.msh" > "$run/log.gmsh" 2>&1
-  cp "$here/bench.yaml" "$run/"
+log=$out/bench.log
+maxMb=${SCALING_MAX_MB:-9000}
+oldMax=${SCALING_OLD_MAX_DOFS:-250000}
+blrTol=${SCALING_BLR_TOLERANCE:-1e-7}
+refBlas=/usr/lib/x86_64-linux-gnu/blas:/usr/lib/x86_64-linux-gnu/lapack
+[ -x "$bench" ] || { echo "run.sh: $bench not found; build the solid-bench target" >&2; exit 1; }
+{
+  echo "# solid-scaling $(date -u +%FT%TZ) commit $(git -C "$root" rev-parse --short HEAD) on $(hostname)"
+  echo "# load: $(uptime)"
+} | tee -a "$log"
+for size in ${SCALING_SIZES:-2 3 4 5}; do
+  if [[ $size == *,* ]]; then IFS=, read -r nx ny nz <<< "$size"; else nx=$((16 * size)) ny=$((8 * size)) nz=$size; fi
   for ranks in ${SCALING_RANKS:-1 2}; do
-    log=$run/log.np$ranks
-    start=$(date +%s.%N)
-    mpirun --oversubscribe --allow-run-as-root -np "$ranks" /usr/bin/time -f "rss_kb %M" \
-      "$app" "$run/bench.yaml" --out "$run/out-np$ranks" > "$log" 2>&1
-    wall=$(echo "$(date +%s.%N) - $start" | bc)
-    dofs=$(grep -m1 "free dofs" "$log" | sed 's/.*, \([0-9]*\) free dofs.*/\1/')
-    rss=$(grep "^rss_kb" "$log" | awk '{ if ($2 > m) m = $2 } END { printf "%.0f", m / 1024 }')
-    a0=$(grep "assembly" "$log" | head -1 | sed 's/.*assembly \([0-9.]*\) s.*/\1/')
-    l0=$(grep "linear solver" "$log" | head -1 | sed 's/.*linear solver \([0-9.]*\) s.*/\1/')
-    l3=$(grep "linear solver" "$log" | tail -1 | sed 's/.*linear solver \([0-9.]*\) s.*/\1/')
-    an=$(grep "solid-app: done" "$log" | sed 's/.* \([0-9]*\) analyses.*/\1/')
-    fa=$(grep "solid-app: done" "$log" | sed 's/.* \([0-9]*\) factorizations.*/\1/')
-    lv=$(grep "solid-app: done" "$log" | sed 's/.*done, \([0-9]*\) level.*/\1/')
-    echo "$n,$dofs,$ranks,$wall,$a0,$l0,$l3,$rss,$an,$fa,$lv" >> "$csv"
-    printf "%6s %8s %5s %8.2f %10s %10s %10s %10s %6s\n" "$n" "$dofs" "$ranks" "$wall" "$a0" "$l0" "$l3" "$rss" "$fa/$lv"
+    for variant in ${SCALING_VARIANTS:-default fullrank blr pord old}; do
+      args=(--cells "$nx" "$ny" "$nz") env=()
+      case $variant in
+        default) ;;
+        fullrank) args+=(--low-rank off) ;;
+        blr) args+=(--low-rank on --tolerance "$blrTol") ;;
+        pord) args+=(--low-rank off --ordering pord) ;;
+        old) args+=(--low-rank off) env=(LD_LIBRARY_PATH="$refBlas${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}") ;;
+        *) echo "run.sh: unknown variant $variant" >&2; exit 1 ;;
+      esac
+      est=$(env "${env[@]}" mpirun -np "$ranks" "$bench" "${args[@]}" --estimate 2>&1 | grep "estimate" || true)
+      mb=$(sed -n 's/.*mumps_mb=\([0-9]*\).*/\1/p' <<< "$est")
+      dofs=$(sed -n 's/.*dofs=\([0-9]*\).*/\1/p' <<< "$est")
+      if [ -z "$mb" ]; then echo "solid-bench: cells=$nx,$ny,$nz ranks=$ranks variant=$variant estimate failed: $est" | tee -a "$log"; continue; fi
+      if [ "$variant" = blr ]; then :; elif [ "$mb" -gt "$maxMb" ]; then
+        echo "solid-bench: dofs=$dofs ranks=$ranks variant=$variant skipped: MUMPS estimate $mb MB > $maxMb MB (SCALING_MAX_MB)" | tee -a "$log"; continue
+      fi
+      if [ "$variant" = old ] && [ "$dofs" -gt "$oldMax" ]; then continue; fi
+      # a guard against a BLR case that compresses less than hoped: address space per rank
+      line=$(ulimit -v $(( (maxMb / ranks + 2500) * 1024 )); env "${env[@]}" nice -n 5 mpirun -np "$ranks" "$bench" "${args[@]}" 2>&1 | grep -E "^solid-bench:|rror|fault" | head -3 || true)
+      echo "$line variant=$variant load=$(cut -d' ' -f1 /proc/loadavg)" | tee -a "$log"
+    done
   done
 done
-echo "table: $csv"

@@ -371,6 +371,13 @@ int runStandalone(const RunOptions& options)
                     st.solveCpuSeconds, st.factorizationMemoryMb, st.estimatedMemoryMb,
                     st.lowRankActive ? "on" : "off", st.lowRankFlops, st.fullRankFlops,
                     st.refinementSteps, st.lowRankFallbacks, st.lastRelativeResidual);
+        if (!st.lastResiduals.empty())
+        {
+            std::printf("solid-app: BLR residuals of the last checked solve:");
+            for (double r : st.lastResiduals)
+                std::printf(" %.2e", r);
+            std::printf("\n");
+        }
         std::printf("solid-app: done, %zu level(s), %d analyses, %d factorizations, wall %.3f s, "
                     "output in %s\n",
                     levelCount, solver.analysisCount(), solver.factorizationCount(), wall,

@@ -69,17 +69,20 @@ material::MaterialParameters parseMaterial(const Block& b)
 linalg::DirectSolverOptions parseLinearSolver(const Block& b)
 {
     b.allowOnly({"verbosity", "ordering", "low_rank", "low_rank_min_size", "low_rank_tolerance",
-                 "low_rank_variant", "refinement_tolerance", "max_refinement_steps",
+                 "low_rank_variant", "refinement_tolerance", "max_refinement_steps", "check_residual",
                  "memory_relaxation", "threads"});
     using linalg::LowRank;
     using linalg::Ordering;
     linalg::DirectSolverOptions o;
     o.verbosity = b.integer("verbosity", o.verbosity);
     const std::string ordering =
-        b.choice("ordering", {"metis", "amd", "amf", "pord", "qamd", "auto"}, "metis");
+        b.choice("ordering", {"metis", "scotch", "ptscotch", "amd", "amf", "pord", "qamd", "auto"},
+                 "metis");
     const std::pair<const char*, Ordering> orderings[] = {
-        {"metis", Ordering::Metis}, {"amd", Ordering::Amd},   {"amf", Ordering::Amf},
-        {"pord", Ordering::Pord},   {"qamd", Ordering::Qamd}, {"auto", Ordering::Automatic}};
+        {"metis", Ordering::Metis},       {"scotch", Ordering::Scotch},
+        {"ptscotch", Ordering::PtScotch}, {"amd", Ordering::Amd},
+        {"amf", Ordering::Amf},           {"pord", Ordering::Pord},
+        {"qamd", Ordering::Qamd},         {"auto", Ordering::Automatic}};
     for (const auto& [name, value] : orderings)
         if (ordering == name)
             o.ordering = static_cast<int>(value);
@@ -94,6 +97,7 @@ linalg::DirectSolverOptions parseLinearSolver(const Block& b)
     o.lowRankUcfs = b.choice("low_rank_variant", {"ucfs", "ufsc"}, "ucfs") == "ucfs";
     o.refinementTolerance = b.number("refinement_tolerance", o.refinementTolerance);
     o.maxRefinementSteps = b.integer("max_refinement_steps", o.maxRefinementSteps);
+    o.checkResidual = b.flag("check_residual", o.checkResidual);
     o.memoryRelaxationPercent = b.integer("memory_relaxation", o.memoryRelaxationPercent);
     o.threadsPerRank = b.integer("threads", o.threadsPerRank);
     if (const auto e = o.firstError())

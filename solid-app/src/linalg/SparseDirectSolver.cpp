@@ -257,6 +257,15 @@ std::vector<int> gatherOnRoot(const std::vector<int>& local, MPI_Comm comm)
 }
 } // namespace
 
+bool mumpsHasScotch()
+{
+#ifdef FSI_MUMPS_HAS_SCOTCH
+    return true;
+#else
+    return false;
+#endif
+}
+
 std::optional<DirectSolverOptions::Error> DirectSolverOptions::firstError() const
 {
     auto text = [](double v)
@@ -266,9 +275,17 @@ std::optional<DirectSolverOptions::Error> DirectSolverOptions::firstError() cons
         return o.str();
     };
     const int o = ordering;
-    if (o != 0 && (o < 2 || o > 7))
+    if (o != 0 && (o < 2 || o > 8))
         return Error{"ordering", std::to_string(o),
-                     "use metis (default), amd, amf, pord, qamd or auto"};
+                     "use metis (default), scotch, ptscotch, amd, amf, pord, qamd or auto"};
+    if (o == static_cast<int>(Ordering::PtScotch) && !mumpsHasScotch())
+        return Error{"ordering", "ptscotch",
+                     "this MUMPS has no PT-SCOTCH: install libmumps-ptscotch-dev and rebuild, or "
+                     "use metis"};
+    if (lowRank == LowRank::On && !mumpsHasScotch())
+        return Error{"low_rank", "on",
+                     "BLR needs MUMPS with SCOTCH (libmumps-ptscotch-dev, then rebuild); use "
+                     "off or auto"};
     if (positiveDefinite && !symmetric)
         return Error{"positive_definite", "true", "needs a symmetric matrix"};
     if (memoryRelaxationPercent < 0 || memoryRelaxationPercent > 1000)
@@ -316,8 +333,9 @@ void DirectSolverOptions::validate() const
 std::string describe(const DirectSolverOptions& o)
 {
     std::ostringstream s;
-    const char* orderings[] = {"amd", "user", "amf", "scotch", "pord", "metis", "qamd", "auto"};
-    s << "ordering " << (o.ordering >= 0 && o.ordering <= 7 ? orderings[o.ordering] : "?")
+    const char* orderings[] = {"amd",   "user", "amf",  "scotch",  "pord",
+                               "metis", "qamd", "auto", "ptscotch"};
+    s << "ordering " << (o.ordering >= 0 && o.ordering <= 8 ? orderings[o.ordering] : "?")
       << ", low_rank "
       << (o.lowRank == LowRank::On ? "on" : o.lowRank == LowRank::Off ? "off" : "auto");
     if (o.lowRank != LowRank::Off)
@@ -341,7 +359,7 @@ std::string blasDescription()
     std::string text = reinterpret_cast<Config>(config)();
     if (void* threads = dlsym(RTLD_DEFAULT, "openblas_get_num_threads"))
         text += ", " + std::to_string(reinterpret_cast<Threads>(threads)()) + " thread(s)";
-    return "OpenBLAS " + text;
+    return text;
 }
 
 SparseDirectSolver::SparseDirectSolver(MPI_Comm comm, DirectSolverOptions options)
@@ -367,9 +385,11 @@ SparseDirectSolver::SparseDirectSolver(MPI_Comm comm, DirectSolverOptions option
     handle_->icntl(18) = 3; // distributed assembled triplets
     handle_->icntl(20) = 0; // dense centralized rhs
     handle_->icntl(21) = 0; // centralized solution
-    handle_->icntl(28) = 1; // sequential analysis (ordering below)
     const bool metis = options.ordering == static_cast<int>(Ordering::Metis);
-    handle_->icntl(7) = metis ? 1 : options.ordering; // METIS: our own, as PERM_IN
+    const bool parallel = options.ordering == static_cast<int>(Ordering::PtScotch);
+    handle_->icntl(28) = parallel ? 2 : 1; // parallel (PT-SCOTCH) or sequential analysis
+    handle_->icntl(29) = 1;                // PT-SCOTCH for the parallel analysis
+    handle_->icntl(7) = metis ? 1 : parallel ? 7 : options.ordering; // METIS: ours, PERM_IN
     handle_->icntl(14) = options.memoryRelaxationPercent;
     handle_->icntl(22) = 0;      // in-core (no out-of-core factors)
     handle_->icntl(24) = 1;      // null pivot detection: singular -> INFOG(28) > 0
@@ -437,6 +457,7 @@ void SparseDirectSolver::setValues(std::vector<double> values)
         return;
     values_ = std::move(kept);
     valuesChanged_ = true;
+    matrixNormStale_ = true;
 }
 
 namespace
@@ -465,6 +486,14 @@ void SparseDirectSolver::factorize()
         factorizeNumerically();
 }
 
+void SparseDirectSolver::analyze()
+{
+    int local = patternChanged_ ? 1 : 0, global = 0;
+    MPI_Allreduce(&local, &global, 1, MPI_INT, MPI_MAX, comm_);
+    if (global || !analysed_)
+        analyse();
+}
+
 void SparseDirectSolver::analyse()
 {
     PhaseTimer timer{stats_.analysisSeconds, stats_.analysisCpuSeconds};
@@ -482,8 +511,9 @@ void SparseDirectSolver::analyse()
         stats_.orderingSeconds += wallSeconds() - t0;
     }
     const bool lowRank =
-        !lowRankDisabled_ && (options_.lowRank == LowRank::On ||
-                              (options_.lowRank == LowRank::Auto && n_ >= options_.lowRankMinSize));
+        !lowRankDisabled_ && mumpsHasScotch() &&
+        (options_.lowRank == LowRank::On ||
+         (options_.lowRank == LowRank::Auto && n_ >= options_.lowRankMinSize));
     handle_->icntl(35) = lowRank ? 2 : 0;
     id.n = n_;
     id.nnz_loc = static_cast<MUMPS_INT8>(rows_.size());
@@ -527,6 +557,11 @@ void SparseDirectSolver::factorizeNumerically()
     // INFOG(29) < 0 means millions of entries
     factorEntries_ = handle_->infog(29) >= 0 ? handle_->infog(29) : -1000000LL * handle_->infog(29);
     stats_.lowRankActive = handle_->icntl(35) != 0;
+    stats_.factorEntries = factorEntries_;
+    stats_.lowRankFactorEntries =
+        !stats_.lowRankActive ? 0
+        : handle_->infog(35) >= 0 ? handle_->infog(35)
+                                  : -1000000LL * handle_->infog(35);
     stats_.fullRankFlops = handle_->rinfog(3);
     stats_.lowRankFlops = stats_.lowRankActive ? handle_->rinfog(14) : 0.0;
     stats_.maxRankMemoryMb = handle_->infog(18);
@@ -547,18 +582,19 @@ void SparseDirectSolver::solve(std::vector<double>& rhsAndSolution)
     }
     refreshFactor_ = false;
     factorize();
-    if (!stats_.lowRankActive)
+    if (!stats_.lowRankActive && !options_.checkResidual)
     {
         backSubstitute(rhsAndSolution);
         ++solveCount_;
         return;
     }
-    // BLR factor: approximate; check the residual and refine, else full rank
+    // BLR factor (approximate), or checkResidual: check the residual and refine; a BLR factor
+    // that misses the tolerance is replaced by a full-rank one
     std::vector<double> b;
     if (rankOf(comm_) == 0)
         b = rhsAndSolution;
     backSubstitute(rhsAndSolution);
-    if (!refine(b, rhsAndSolution))
+    if (!refine(b, rhsAndSolution) && stats_.lowRankActive)
     {
         ++stats_.lowRankFallbacks;
         lowRankDisabled_ = true;
@@ -567,6 +603,8 @@ void SparseDirectSolver::solve(std::vector<double>& rhsAndSolution)
             rhsAndSolution = b;
         factorize();
         backSubstitute(rhsAndSolution);
+        if (options_.checkResidual)
+            refine(b, rhsAndSolution);
     }
     ++solveCount_;
 }
@@ -574,26 +612,59 @@ void SparseDirectSolver::solve(std::vector<double>& rhsAndSolution)
 bool SparseDirectSolver::refine(const std::vector<double>& b, std::vector<double>& x)
 {
     const bool root = rankOf(comm_) == 0;
+    if (matrixNormStale_)
+    {
+        // ||A||_inf: row sums of |a_ij| (the lower triangle counted for both triangles)
+        std::vector<double> rowSums(n_, 0.0);
+        for (std::size_t k = 0; k < values_.size(); ++k)
+        {
+            rowSums[rows_[k] - 1] += std::abs(values_[k]);
+            if (options_.symmetric && rows_[k] != cols_[k])
+                rowSums[cols_[k] - 1] += std::abs(values_[k]);
+        }
+        MPI_Allreduce(MPI_IN_PLACE, rowSums.data(), n_, MPI_DOUBLE, MPI_SUM, comm_);
+        matrixNorm_ = rowSums.empty() ? 0.0 : *std::max_element(rowSums.begin(), rowSums.end());
+        matrixNormStale_ = false;
+    }
     std::vector<double> ax, r(root ? n_ : 0);
+    double backwardError = 0.0;
     auto residualNorm = [&]()
     {
         PhaseTimer timer{stats_.solveSeconds, stats_.solveCpuSeconds};
         std::vector<double> xs = root ? x : std::vector<double>(n_, 0.0);
         multiply(xs, ax);
-        double sums[2] = {0.0, 0.0};
+        double sums[4] = {0.0, 0.0, 0.0, 0.0}; // |r|^2, |b|^2, |r|_inf, |x|_inf + |b|_inf parts
         if (root)
+        {
+            double bMax = 0.0, xMax = 0.0;
             for (int i = 0; i < n_; ++i)
             {
                 r[i] = b[i] - ax[i];
                 sums[0] += r[i] * r[i];
                 sums[1] += b[i] * b[i];
+                sums[2] = std::max(sums[2], std::abs(r[i]));
+                bMax = std::max(bMax, std::abs(b[i]));
+                xMax = std::max(xMax, std::abs(x[i]));
             }
-        MPI_Bcast(sums, 2, MPI_DOUBLE, 0, comm_);
+            sums[3] = matrixNorm_ * xMax + bMax;
+        }
+        MPI_Bcast(sums, 4, MPI_DOUBLE, 0, comm_);
+        backwardError = sums[3] > 0.0 ? sums[2] / sums[3] : 0.0;
         return sums[1] > 0.0 ? std::sqrt(sums[0] / sums[1]) : std::sqrt(sums[0]);
     };
+    // converged: the relative residual meets the tolerance, or the residual is rounding noise
+    // (normwise backward error at the level of a backward-stable full-rank solve), which no
+    // refinement can lower further
+    auto converged = [&](double relative)
+    {
+        return relative <= options_.refinementTolerance ||
+               backwardError <= kRoundingBackwardError;
+    };
     double relative = residualNorm();
-    for (int step = 0; step < options_.maxRefinementSteps &&
-                       !(relative <= options_.refinementTolerance) && std::isfinite(relative);
+    stats_.lastResiduals.assign(1, relative);
+    stats_.lastBackwardErrors.assign(1, backwardError);
+    for (int step = 0; step < options_.maxRefinementSteps && !converged(relative) &&
+                       std::isfinite(relative);
          ++step)
     {
         std::vector<double> z = r;
@@ -602,16 +673,17 @@ bool SparseDirectSolver::refine(const std::vector<double>& b, std::vector<double
             for (int i = 0; i < n_; ++i)
                 x[i] += z[i];
         const double next = residualNorm();
+        stats_.lastResiduals.push_back(next);
+        stats_.lastBackwardErrors.push_back(backwardError);
         ++stats_.refinementSteps;
-        if (!(next < 0.9 * relative)) // stagnates: BLR too coarse for this matrix
-        {
-            relative = next;
-            break;
-        }
+        const bool stalled = !(next < 0.5 * relative); // BLR too coarse, or at rounding level
         relative = next;
+        if (stalled)
+            break;
     }
     stats_.lastRelativeResidual = relative;
-    return relative <= options_.refinementTolerance;
+    stats_.lastBackwardError = backwardError;
+    return converged(relative);
 }
 
 void SparseDirectSolver::multiply(std::vector<double>& x, std::vector<double>& y) const

@@ -12,11 +12,14 @@
 namespace fsi::linalg
 {
 
-// MUMPS ICNTL(7) values. Debian's MUMPS 5.5 (libmumps-5.5) has neither METIS nor SCOTCH
-// compiled in: Metis is computed by this wrapper (METIS_NodeND on the graph compressed to
-// supervariables, e.g. the 3 dofs of a node -> PERM_IN, ICNTL(7) = 1); Scotch falls back to
-// MUMPS' automatic choice. The analysis is sequential (ICNTL(28) = 1) on any number of ranks:
-// parallel ordering (ICNTL(28) = 2) needs PT-SCOTCH or ParMETIS inside MUMPS.
+// Fill-reducing orderings: MUMPS ICNTL(7) values, and PtScotch (not an ICNTL(7) value: the
+// parallel analysis, ICNTL(28) = 2 with ICNTL(29) = 1). Metis is computed by this wrapper in
+// every MUMPS build (METIS_NodeND on the graph compressed to supervariables, e.g. the 3 dofs
+// of a node, handed over as PERM_IN, ICNTL(7) = 1): Debian's MUMPS has no METIS compiled in.
+// Scotch and PtScotch need the ptscotch build of MUMPS (libmumps-ptscotch-dev, what
+// cmake/FindMUMPS.cmake links when found); the plain build (libmumps-dev) falls back to MUMPS'
+// automatic choice for Scotch and rejects PtScotch. All other orderings run sequentially on
+// rank 0 (ICNTL(28) = 1), on any number of ranks.
 enum class Ordering : int
 {
     Amd = 0,
@@ -25,15 +28,28 @@ enum class Ordering : int
     Pord = 4,
     Metis = 5,
     Qamd = 6,
-    Automatic = 7
+    Automatic = 7,
+    PtScotch = 8
 };
+
+// True when the linked MUMPS has SCOTCH/PT-SCOTCH compiled in (ptscotch build): needed by
+// Ordering::PtScotch and by BLR (MUMPS clusters the BLR blocks of a front with SCOTCH; without
+// METIS or SCOTCH inside MUMPS the clusters are arbitrary and BLR neither compresses nor stays
+// accurate, so LowRank::Auto stays full-rank and LowRank::On is rejected).
+bool mumpsHasScotch();
+
+// Refinement stops at this normwise backward error |b - A x|_inf / (|A|_inf |x|_inf + |b|_inf)
+// even above refinementTolerance: a backward-stable full-rank solve ends there (rounding), so
+// further steps cannot lower the residual (ill-conditioned matrices: nu -> 0.5, slender parts).
+constexpr double kRoundingBackwardError = 1e-14;
 
 // Block low-rank (BLR) factorization, MUMPS ICNTL(35).
 enum class LowRank : int
 {
     Off = 0,  // full-rank factorization (ICNTL(35) = 0)
     On = 1,   // BLR factorization and solve (ICNTL(35) = 2)
-    Auto = 2  // On when the matrix has at least lowRankMinSize rows, Off below
+    Auto = 2  // On when the matrix has at least lowRankMinSize rows (and mumpsHasScotch()),
+              // Off below
 };
 
 // Every field's default is the documented one (config/solid.example.yaml, linear_solver block;
@@ -60,6 +76,9 @@ struct DirectSolverOptions
     // the matrix is factorized again without BLR (and stays full-rank for this solver).
     double refinementTolerance = 1e-10;
     int maxRefinementSteps = 10;
+    // Full-rank solves too: residual check and refinement (one sparse product per step; off:
+    // a full-rank solve is returned as MUMPS gives it, as before).
+    bool checkResidual = false;
     // BLAS (OpenBLAS) and OpenMP threads per MPI rank, set when the solver is created;
     // 0 = leave them to the environment (OPENBLAS_NUM_THREADS, OMP_NUM_THREADS).
     int threadsPerRank = 1;
@@ -98,9 +117,14 @@ struct DirectSolverStatistics
                                         // (after analysis: the estimate RINFOG(1))
     double lowRankFlops = 0.0;          // RINFOG(14): flops of the BLR factorization (0: off)
     bool lowRankActive = false;         // the last factorization used BLR
+    long long factorEntries = 0;        // INFOG(29): entries of the full-rank factor
+    long long lowRankFactorEntries = 0; // INFOG(35): entries kept by BLR (0: off)
     int lowRankFallbacks = 0;           // BLR solves that missed the tolerance -> full rank
     int refinementSteps = 0;            // total refinement steps over all solves
     double lastRelativeResidual = -1.0; // |b - A x| / |b| of the last checked solve (-1: none)
+    std::vector<double> lastResiduals;  // the last checked solve: before and after each step
+    double lastBackwardError = -1.0;    // |b - A x|_inf / (|A|_inf |x|_inf + |b|_inf), last
+    std::vector<double> lastBackwardErrors; // the same, before and after each step
 };
 
 // BLAS library in use and its thread count, e.g. "OpenBLAS 0.3.21 ... Haswell SINGLE_THREADED"
@@ -138,6 +162,10 @@ public:
     // Values in the same order as this rank's pattern (size == rows.size()). Marks the
     // factorization stale only if some value changed (bitwise) on some rank.
     void setValues(std::vector<double> values);
+
+    // Symbolic analysis only, if the pattern changed (no values needed): statistics() then
+    // holds MUMPS' estimates (memory INFOG(17), flops RINFOG(1)). For sizing runs.
+    void analyze();
 
     // Analysis if needed, then numerical factorization if stale; no-op otherwise.
     // Throws std::runtime_error with INFOG(1)/INFOG(2) and a hint (singular matrix:
@@ -208,6 +236,8 @@ private:
     bool refreshFactor_ = false; // the last CG needed many iterations: factorize next time
     int negativePivots_ = 0;
     long long factorEntries_ = 0;
+    bool matrixNormStale_ = true;  // |A|_inf for the backward error (refine)
+    double matrixNorm_ = 0.0;
     bool lowRankDisabled_ = false; // a BLR solve missed the tolerance: full rank from then on
     DirectSolverStatistics stats_;
 };
