@@ -157,6 +157,8 @@ double solveCube(const DirectSolverOptions& options, DirectSolverStatistics& sta
 // the relative residual below refinementTolerance = 1e-10, without falling back to full rank.
 TEST(LowRank, BlrWithMetisMeetsTheResidualTolerance)
 {
+    if (!mumpsHasScotch())
+        GTEST_SKIP() << "MUMPS without SCOTCH: BLR is unavailable";
     DirectSolverOptions options;
     options.lowRank = LowRank::On;
     options.lowRankTolerance = 1e-6;
@@ -174,6 +176,8 @@ TEST(LowRank, BlrWithMetisMeetsTheResidualTolerance)
 // again without BLR and the answer is still accurate.
 TEST(LowRank, TooCoarseBlrFallsBackToFullRank)
 {
+    if (!mumpsHasScotch())
+        GTEST_SKIP() << "MUMPS without SCOTCH: BLR is unavailable";
     DirectSolverOptions options;
     options.lowRank = LowRank::On;
     options.lowRankTolerance = 1e-3;
@@ -185,15 +189,21 @@ TEST(LowRank, TooCoarseBlrFallsBackToFullRank)
     EXPECT_LT(residual, 1e-10) << "rank " << worldRank();
 }
 
-// Default options (low_rank auto below its minimum size: full rank, METIS) keep the accuracy
-// the solver always had; auto switches BLR on from low_rank_min_size rows.
+// Default options (low_rank off, METIS) keep the accuracy the solver always had; auto switches
+// BLR on from low_rank_min_size rows.
 TEST(LowRank, AutoFollowsTheMinimumSize)
 {
+    if (!mumpsHasScotch())
+        GTEST_SKIP() << "MUMPS without SCOTCH: BLR is unavailable";
     DirectSolverStatistics stats;
-    EXPECT_LT(solveCube({}, stats, 8), 1e-10);
+    EXPECT_LT(solveCube({}, stats, 8), 1e-10); // default: off
     EXPECT_FALSE(stats.lowRankActive);
     DirectSolverOptions small;
-    small.lowRankMinSize = 1000; // the m = 8 cube has 1944 rows
+    small.lowRank = LowRank::Auto;
+    small.lowRankMinSize = 5000; // the m = 8 cube has 1944 rows
+    EXPECT_LT(solveCube(small, stats, 8), 1e-10);
+    EXPECT_FALSE(stats.lowRankActive);
+    small.lowRankMinSize = 1000;
     EXPECT_LT(solveCube(small, stats, 8), 1e-10);
     EXPECT_TRUE(stats.lowRankActive);
 }
@@ -224,7 +234,7 @@ TEST(DirectSolverOptions, DefaultsAreTheDocumentedOnes)
 {
     const DirectSolverOptions o;
     EXPECT_EQ(o.ordering, static_cast<int>(Ordering::Metis));
-    EXPECT_EQ(o.lowRank, LowRank::Auto);
+    EXPECT_EQ(o.lowRank, LowRank::Off);
     EXPECT_EQ(o.lowRankMinSize, 100000);
     EXPECT_EQ(o.lowRankTolerance, 1e-9);
     EXPECT_TRUE(o.lowRankUcfs);

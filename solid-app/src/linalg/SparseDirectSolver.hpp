@@ -37,6 +37,8 @@ enum class Ordering : int
 // METIS or SCOTCH inside MUMPS the clusters are arbitrary and BLR neither compresses nor stays
 // accurate, so LowRank::Auto stays full-rank and LowRank::On is rejected).
 bool mumpsHasScotch();
+// True for the ptscotch build (Ordering::PtScotch).
+bool mumpsHasPtScotch();
 
 // Refinement stops at this normwise backward error |b - A x|_inf / (|A|_inf |x|_inf + |b|_inf)
 // even above refinementTolerance: a backward-stable full-rank solve ends there (rounding), so
@@ -66,7 +68,7 @@ struct DirectSolverOptions
     int verbosity = 0;                                // 0 silent ... 4 MUMPS diagnostics
     // BLR compression (ICNTL(35), ICNTL(36), CNTL(7)). The factor is approximate to about
     // lowRankTolerance (relative); every solve with a BLR factor is checked and refined (below).
-    LowRank lowRank = LowRank::Auto;
+    LowRank lowRank = LowRank::Off;
     int lowRankMinSize = 100000;    // Auto: BLR for n >= this
     double lowRankTolerance = 1e-9; // CNTL(7), the BLR dropping threshold
     bool lowRankUcfs = true;        // ICNTL(36): true = UCFS (compress before the solve of the
