@@ -2,24 +2,27 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Solid linear-solver scaling: MUMPS factorization / solve time, CPU time, peak memory and
 # accuracy against DOFs, on 1 and 2 ranks, per linear-solver setting, with solid-bench (a
-# structured Tet10 box of the fine hydrofoil's proportions, span:chord:thickness = 16:8:1 cells,
-# clamped at one end, gravity; one static solve). One line per case:
+# structured Tet10 box, nu = 0.49, clamped at x = 0, gravity; one static solve). Two shapes:
+#   plate  NX x NX/2 x 2 cells: 2 cells through the thickness like the fine foil's Tet10 mesh;
+#          40 k ... 1.02 M dofs (a 3-D block of 1 M dofs needs 15-19 GB in core: over budget)
+#   block  16k x 8k x k cells, the foil's span:chord:thickness: 32 k ... 428 k dofs
+# One line per case:
 #   solid-bench: dofs=N ranks=R factor_s=X solve_s=X rss_mb=X analysis_s=X ... blr=on|off ...
 # Variants (SCALING_VARIANTS):
-#   default    this branch's defaults (METIS on the supervariable graph, OpenBLAS, BLR per
-#              low_rank auto)
-#   fullrank   the same with low_rank off
+#   default    this branch's defaults (METIS on the supervariable graph, OpenBLAS, low_rank off)
+#   fullrank   the same, low_rank off explicitly
 #   blr        low_rank on at SCALING_BLR_TOLERANCE (needs MUMPS with SCOTCH)
 #   pord       MUMPS' own PORD ordering instead of METIS (low_rank off)
 #   old        the settings before issue 14: reference BLAS (LD_LIBRARY_PATH to Debian's
 #              libblas3/liblapack3), low_rank off
-# Sizes: SCALING_SIZES are k for 16k x 8k x k cells (k = 2 3 4 5 6 7: 32 k, 99 k, 225 k, 428 k,
-# 726 k, 1.14 M dofs) or explicit NX,NY,NZ cell triples. Cases whose MUMPS estimate (analysis
+# Sizes: SCALING_SIZES, NX,NY,NZ cell triples; default the plate series 36,18,2 64,32,2 96,48,2
+# 130,65,2 184,92,2 (40 k, 125 k, 279 k, 511 k, 1.02 M dofs) then the block series 32,16,2
+# 48,24,3 64,32,4 80,40,5 (32 k, 99 k, 225 k, 428 k). Cases whose MUMPS estimate (analysis
 # only, solid-bench --estimate) exceeds SCALING_MAX_MB (default 9000, total over ranks) are
-# reported as skipped, not run. The "old" variant runs only up to SCALING_OLD_MAX_DOFS (250000).
+# reported as skipped, not run. The "old" variant runs only up to SCALING_OLD_MAX_DOFS (300000).
 # usage: bench/solid-scaling/run.sh [OUT_DIR]   (prints the lines; OUT_DIR/bench.log keeps them)
-#   env: SCALING_SIZES ("2 3 4 5"), SCALING_RANKS ("1 2"), SCALING_VARIANTS ("default fullrank
-#        blr pord old"), SCALING_BLR_TOLERANCE (1e-7), SCALING_MAX_MB, SOLID_BENCH
+#   env: SCALING_SIZES, SCALING_RANKS ("1 2"), SCALING_VARIANTS ("fullrank blr pord old"),
+#        SCALING_BLR_TOLERANCE (1e-7), SCALING_MAX_MB, SCALING_OLD_MAX_DOFS, SOLID_BENCH
 #        (default $FSI_BUILD_DIR/bin/solid-bench). Runs niced (nice -n 5), one case at a time.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
@@ -30,7 +33,8 @@ out=${1:-$root/runs/solid-scaling}
 mkdir -p "$out"
 log=$out/bench.log
 maxMb=${SCALING_MAX_MB:-9000}
-oldMax=${SCALING_OLD_MAX_DOFS:-250000}
+oldMax=${SCALING_OLD_MAX_DOFS:-300000}
+sizes=${SCALING_SIZES:-36,18,2 64,32,2 96,48,2 130,65,2 184,92,2 32,16,2 48,24,3 64,32,4 80,40,5}
 blrTol=${SCALING_BLR_TOLERANCE:-1e-7}
 refBlas=/usr/lib/x86_64-linux-gnu/blas:/usr/lib/x86_64-linux-gnu/lapack
 [ -x "$bench" ] || { echo "run.sh: $bench not found; build the solid-bench target" >&2; exit 1; }
@@ -38,10 +42,10 @@ refBlas=/usr/lib/x86_64-linux-gnu/blas:/usr/lib/x86_64-linux-gnu/lapack
   echo "# solid-scaling $(date -u +%FT%TZ) commit $(git -C "$root" rev-parse --short HEAD) on $(hostname)"
   echo "# load: $(uptime)"
 } | tee -a "$log"
-for size in ${SCALING_SIZES:-2 3 4 5}; do
-  if [[ $size == *,* ]]; then IFS=, read -r nx ny nz <<< "$size"; else nx=$((16 * size)) ny=$((8 * size)) nz=$size; fi
+for size in $sizes; do
+  IFS=, read -r nx ny nz <<< "$size"
   for ranks in ${SCALING_RANKS:-1 2}; do
-    for variant in ${SCALING_VARIANTS:-default fullrank blr pord old}; do
+    for variant in ${SCALING_VARIANTS:-fullrank blr pord old}; do
       args=(--cells "$nx" "$ny" "$nz") env=()
       case $variant in
         default) ;;

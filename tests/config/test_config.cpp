@@ -337,6 +337,7 @@ TEST(SolidConfig, LinearSolverDefaultsAreTheDocumentedOnes)
         EXPECT_EQ(o.maxRefinementSteps, defaults.maxRefinementSteps);
         EXPECT_EQ(o.memoryRelaxationPercent, defaults.memoryRelaxationPercent);
         EXPECT_EQ(o.threadsPerRank, defaults.threadsPerRank);
+        EXPECT_EQ(o.checkResidual, defaults.checkResidual);
     }
     const std::string block = std::string(valid) +
                               "  linear_solver: {ordering: pord, low_rank: off, threads: 2, "
@@ -362,7 +363,7 @@ TEST(SolidConfig, LinearSolverBadValuesAreOneLineErrors)
         {"ordering: nested", "'solid.linear_solver.ordering'"},
         {"low_rank: maybe", "'solid.linear_solver.low_rank'"},
         {"low_rank_variant: hodlr", "'solid.linear_solver.low_rank_variant'"},
-        {"blr: on", "'solid.linear_solver.blr'"},
+        {"blr: on", "unknown key 'blr' in 'solid.linear_solver'"},
     };
     for (const auto& [entry, expected] : cases)
     {

@@ -243,6 +243,7 @@ TEST(DirectSolverOptions, DefaultsAreTheDocumentedOnes)
     EXPECT_EQ(o.memoryRelaxationPercent, 30);
     EXPECT_EQ(o.threadsPerRank, 1);
     EXPECT_EQ(o.verbosity, 0);
+    EXPECT_FALSE(o.checkResidual);
     EXPECT_FALSE(o.reuseFactorization);
     EXPECT_NO_THROW(o.validate());
 }
