@@ -643,8 +643,7 @@ void SparseDirectSolver::solve(std::vector<double>& rhsAndSolution)
             rhsAndSolution = b;
         factorize();
         backSubstitute(rhsAndSolution);
-        if (options_.checkResidual)
-            refine(b, rhsAndSolution);
+        refine(b, rhsAndSolution); // the full-rank answer is checked too (and in the statistics)
     }
     ++solveCount_;
 }
