@@ -186,6 +186,7 @@ TEST(LowRank, TooCoarseBlrFallsBackToFullRank)
     const double residual = solveCube(options, stats);
     EXPECT_EQ(stats.lowRankFallbacks, 1);
     EXPECT_FALSE(stats.lowRankActive);
+    EXPECT_LT(stats.lastRelativeResidual, 1e-10); // the full-rank solve's, checked too
     EXPECT_LT(residual, 1e-10) << "rank " << worldRank();
 }
 
