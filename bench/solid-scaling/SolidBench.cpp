@@ -11,8 +11,11 @@
 // Not a test: run by bench/solid-scaling/run.sh, one process per case (peak memory per case).
 //
 // usage: solid-bench [--dofs N | --cells NX NY NZ] [--aspect A:B:C] [--low-rank auto|on|off]
-//                    [--tolerance EPS] [--ordering metis|scotch|ptscotch|amd|amf|pord|qamd|auto] [--threads T]
-//                    [--nu NU] [--verbosity V]
+//                    [--tolerance EPS] [--ufsc] [--ordering metis|scotch|ptscotch|amd|amf|pord|
+//                    qamd|auto] [--threads T] [--nu NU] [--verbosity V] [--no-check] [--estimate]
+//   --no-check  no residual check after full-rank solves (on by default here: `residual` and
+//               `residuals` then cover every variant); --estimate  analysis only: prints MUMPS'
+//               memory and flop estimates (mumps_mb, flops) without factorizing.
 #include "fe/StructuralSolver.hpp"
 #include "linalg/CsrPattern.hpp"
 #include "linalg/SparseDirectSolver.hpp"
@@ -53,8 +56,9 @@ struct Args
     throw std::invalid_argument(
         "solid-bench: " + what +
         "; usage: solid-bench [--dofs N | --cells NX NY NZ] [--aspect A:B:C] "
-        "[--low-rank auto|on|off] [--tolerance EPS] [--ordering metis|scotch|ptscotch|amd|amf|pord|qamd|auto] "
-        "[--threads T] [--nu NU] [--verbosity V]");
+        "[--low-rank auto|on|off] [--tolerance EPS] [--ufsc] "
+        "[--ordering metis|scotch|ptscotch|amd|amf|pord|qamd|auto] [--threads T] [--nu NU] "
+        "[--verbosity V] [--no-check] [--estimate]");
 }
 
 Args parse(int argc, char** argv)
