@@ -110,7 +110,7 @@ fe::ProblemDefinition problemFromConfig(const config::SolidConfig& c)
                           : c.newton.lineSearch == "never" ? fe::LineSearch::Never
                                                            : fe::LineSearch::Fallback;
     p.newton.maxLoadCuts = c.newton.maxLoadCuts;
-    p.linearSolverVerbosity = c.solverVerbosity;
+    p.linearSolver = c.linearSolver;
     return p;
 }
 
@@ -212,6 +212,9 @@ int runStandalone(const RunOptions& options)
             std::printf(" %s:%d", name.c_str(), count);
         std::printf(" ), %d free dofs, %d rank(s), material %s\n", solver.numFreeDofs(), ranks,
                     law->name().c_str());
+        std::printf("solid-app: linear solver MUMPS, %s; BLAS: %s\n",
+                    linalg::describe(solver.linearSolver().options()).c_str(),
+                    linalg::blasDescription().c_str());
     }
     std::vector<std::string> names, extraColumns;
     std::vector<std::array<double, 3>> points;
@@ -357,6 +360,25 @@ int runStandalone(const RunOptions& options)
             std::printf("watch %s: node %d at distance %.3e m, u = (%.6e, %.6e, %.6e) m\n",
                         names[k].c_str(), node, history.distance(k), u[3 * node], u[3 * node + 1],
                         u[3 * node + 2]);
+        }
+        const auto& st = solver.linearSolver().statistics();
+        std::printf("solid-app: linear solver totals: analysis %.2f s (cpu %.2f, ordering %.2f), "
+                    "factorization %.2f s (cpu %.2f), solve %.2f s (cpu %.2f); factorization "
+                    "memory %lld MB (estimate %lld MB), BLR %s (flops %.3g of %.3g full rank, "
+                    "%d refinement steps, %d fallbacks), last checked residual %.2e (backward error "
+                    "%.1e)\n",
+                    st.analysisSeconds, st.analysisCpuSeconds, st.orderingSeconds,
+                    st.factorizationSeconds, st.factorizationCpuSeconds, st.solveSeconds,
+                    st.solveCpuSeconds, st.factorizationMemoryMb, st.estimatedMemoryMb,
+                    st.lowRankActive ? "on" : "off", st.lowRankFlops, st.fullRankFlops,
+                    st.refinementSteps, st.lowRankFallbacks, st.lastRelativeResidual,
+                    st.lastBackwardError);
+        if (!st.lastResiduals.empty())
+        {
+            std::printf("solid-app: BLR residuals of the last checked solve:");
+            for (double r : st.lastResiduals)
+                std::printf(" %.2e", r);
+            std::printf("\n");
         }
         std::printf("solid-app: done, %zu level(s), %d analyses, %d factorizations, wall %.3f s, "
                     "output in %s\n",

@@ -316,3 +316,58 @@ TEST(SolidConfig, ElementType)
                   .find("unknown key 'formulation' in 'solid.element'"),
               std::string::npos);
 }
+
+// Issue 14: the linear_solver block. The shipped example spells out every default: parsing it
+// gives linalg::DirectSolverOptions{}; bad values are one-line errors naming the key and the fix.
+TEST(SolidConfig, LinearSolverDefaultsAreTheDocumentedOnes)
+{
+    const fsi::linalg::DirectSolverOptions defaults;
+    for (const auto& c :
+         {SolidConfig::load(write(valid)),
+          SolidConfig::load(std::string(FSI_SOURCE_DIR) + "/config/solid.example.yaml")})
+    {
+        const auto& o = c.linearSolver;
+        EXPECT_EQ(o.verbosity, defaults.verbosity);
+        EXPECT_EQ(o.ordering, defaults.ordering);
+        EXPECT_EQ(o.lowRank, defaults.lowRank);
+        EXPECT_EQ(o.lowRankMinSize, defaults.lowRankMinSize);
+        EXPECT_EQ(o.lowRankTolerance, defaults.lowRankTolerance);
+        EXPECT_EQ(o.lowRankUcfs, defaults.lowRankUcfs);
+        EXPECT_EQ(o.refinementTolerance, defaults.refinementTolerance);
+        EXPECT_EQ(o.maxRefinementSteps, defaults.maxRefinementSteps);
+        EXPECT_EQ(o.memoryRelaxationPercent, defaults.memoryRelaxationPercent);
+        EXPECT_EQ(o.threadsPerRank, defaults.threadsPerRank);
+        EXPECT_EQ(o.checkResidual, defaults.checkResidual);
+    }
+    const std::string block = std::string(valid) +
+                              "  linear_solver: {ordering: pord, low_rank: off, threads: 2, "
+                              "low_rank_tolerance: 1.0e-6, memory_relaxation: 50}\n";
+    const auto c = SolidConfig::load(write(block));
+    EXPECT_EQ(c.linearSolver.ordering, static_cast<int>(fsi::linalg::Ordering::Pord));
+    EXPECT_EQ(c.linearSolver.lowRank, fsi::linalg::LowRank::Off);
+    EXPECT_EQ(c.linearSolver.threadsPerRank, 2);
+    EXPECT_EQ(c.linearSolver.lowRankTolerance, 1e-6);
+    EXPECT_EQ(c.linearSolver.memoryRelaxationPercent, 50);
+}
+
+TEST(SolidConfig, LinearSolverBadValuesAreOneLineErrors)
+{
+    const std::pair<std::string, std::string> cases[] = {
+        {"low_rank_tolerance: 0.5", "'solid.linear_solver.low_rank_tolerance' = 0.5 is invalid"},
+        {"threads: -2", "'solid.linear_solver.threads' = -2 is invalid"},
+        {"max_refinement_steps: -1", "'solid.linear_solver.max_refinement_steps' = -1 is invalid"},
+        {"refinement_tolerance: 2", "'solid.linear_solver.refinement_tolerance' = 2 is invalid"},
+        {"memory_relaxation: -1", "'solid.linear_solver.memory_relaxation' = -1 is invalid"},
+        {"low_rank_min_size: 0", "'solid.linear_solver.low_rank_min_size' = 0 is invalid"},
+        {"verbosity: 9", "'solid.linear_solver.verbosity' = 9 is invalid"},
+        {"ordering: nested", "'solid.linear_solver.ordering'"},
+        {"low_rank: maybe", "'solid.linear_solver.low_rank'"},
+        {"low_rank_variant: hodlr", "'solid.linear_solver.low_rank_variant'"},
+        {"blr: on", "unknown key 'blr' in 'solid.linear_solver'"},
+    };
+    for (const auto& [entry, expected] : cases)
+    {
+        const std::string msg = errorOf(std::string(valid) + "  linear_solver: {" + entry + "}\n");
+        EXPECT_NE(msg.find(expected), std::string::npos) << entry << " -> " << msg;
+    }
+}

@@ -66,6 +66,45 @@ material::MaterialParameters parseMaterial(const Block& b)
     return m;
 }
 
+linalg::DirectSolverOptions parseLinearSolver(const Block& b)
+{
+    b.allowOnly({"verbosity", "ordering", "low_rank", "low_rank_min_size", "low_rank_tolerance",
+                 "low_rank_variant", "refinement_tolerance", "max_refinement_steps", "check_residual",
+                 "memory_relaxation", "threads"});
+    using linalg::LowRank;
+    using linalg::Ordering;
+    linalg::DirectSolverOptions o;
+    o.verbosity = b.integer("verbosity", o.verbosity);
+    const std::string ordering =
+        b.choice("ordering", {"metis", "scotch", "ptscotch", "amd", "amf", "pord", "qamd", "auto"},
+                 "metis");
+    const std::pair<const char*, Ordering> orderings[] = {
+        {"metis", Ordering::Metis},       {"scotch", Ordering::Scotch},
+        {"ptscotch", Ordering::PtScotch}, {"amd", Ordering::Amd},
+        {"amf", Ordering::Amf},           {"pord", Ordering::Pord},
+        {"qamd", Ordering::Qamd},         {"auto", Ordering::Automatic}};
+    for (const auto& [name, value] : orderings)
+        if (ordering == name)
+            o.ordering = static_cast<int>(value);
+    // true / false read as on / off
+    const std::string lowRank =
+        b.choice("low_rank", {"auto", "on", "off", "true", "false"}, "auto");
+    o.lowRank = lowRank == "auto" ? LowRank::Auto
+                : (lowRank == "on" || lowRank == "true") ? LowRank::On
+                                                         : LowRank::Off;
+    o.lowRankMinSize = b.integer("low_rank_min_size", o.lowRankMinSize);
+    o.lowRankTolerance = b.number("low_rank_tolerance", o.lowRankTolerance);
+    o.lowRankUcfs = b.choice("low_rank_variant", {"ucfs", "ufsc"}, "ucfs") == "ucfs";
+    o.refinementTolerance = b.number("refinement_tolerance", o.refinementTolerance);
+    o.maxRefinementSteps = b.integer("max_refinement_steps", o.maxRefinementSteps);
+    o.checkResidual = b.flag("check_residual", o.checkResidual);
+    o.memoryRelaxationPercent = b.integer("memory_relaxation", o.memoryRelaxationPercent);
+    o.threadsPerRank = b.integer("threads", o.threadsPerRank);
+    if (const auto e = o.firstError())
+        b.fail(e->key, "= " + e->value + " is invalid: " + e->fix);
+    return o;
+}
+
 NewtonParameters NewtonParameters::parse(const Block& b)
 {
     b.allowOnly({"max_iterations", "residual_tolerance", "absolute_tolerance", "line_search",
@@ -358,10 +397,7 @@ SolidConfig SolidConfig::load(const std::string& file)
     if (auto n = s.optionalBlock("newton"))
         c.newton = NewtonParameters::parse(*n);
     if (auto l = s.optionalBlock("linear_solver"))
-    {
-        l->allowOnly({"verbosity"});
-        c.solverVerbosity = l->integer("verbosity", 0);
-    }
+        c.linearSolver = parseLinearSolver(*l);
     c.loads = LoadParameters::parse(s.block("loads"));
     if (c.loads.hasGravity && !m.has("density"))
         m.fail("density", "missing: loads.gravity needs the density [kg/m^3]");
@@ -414,6 +450,8 @@ std::string SolidConfig::echo() const
       << ", absolute_tolerance: " << newton.absoluteTolerance
       << ", line_search: " << newton.lineSearch << ", max_load_cuts: " << newton.maxLoadCuts
       << "}\n";
+    o << "  linear_solver: {verbosity: " << linearSolver.verbosity << "}  # "
+      << linalg::describe(linearSolver) << "\n";
     o << "  loads:\n";
     if (loads.hasGravity)
         o << "    gravity: " << vec(loads.gravity) << "\n";

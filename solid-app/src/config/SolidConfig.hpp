@@ -2,6 +2,7 @@
 // The solid's parameters (YAML block `solid:`), each struct parsed and validated in one
 // place. Every key is documented in config/solid.example.yaml. Units SI.
 #pragma once
+#include "linalg/SparseDirectSolver.hpp"
 #include "material/Material.hpp"
 #include "material/MaterialParameters.hpp"
 
@@ -132,7 +133,10 @@ struct SolidConfig
     // hexahedra that do not lock for nu -> 0.5; fe::formulationFromName()).
     std::string elementType = "displacement";
     NewtonParameters newton;
-    int solverVerbosity = 0;
+    // solid.linear_solver: MUMPS settings (verbosity, ordering, BLR, refinement, threads);
+    // defaults as documented in config/solid.example.yaml. symmetric and reuseFactorization are
+    // set by fe::StructuralSolver.
+    linalg::DirectSolverOptions linearSolver;
     LoadParameters loads;
     TimeParameters time;
     OutputParameters output;
@@ -145,5 +149,7 @@ struct SolidConfig
 };
 
 material::MaterialParameters parseMaterial(const Block& b);
+// The `linear_solver` block into options (defaults for absent keys); one-line errors.
+linalg::DirectSolverOptions parseLinearSolver(const Block& b);
 
 } // namespace fsi::config

@@ -175,9 +175,8 @@ StructuralSolver::StructuralSolver(MPI_Comm comm, const mesh::Mesh& mesh,
 
     pattern_ = std::make_unique<Pattern>();
     pattern_->csr = linalg::CsrPattern::fromElements(numFree_, dofOffsets, dofs, true);
-    linalg::DirectSolverOptions options;
+    linalg::DirectSolverOptions options = problem_.linearSolver;
     options.symmetric = true;
-    options.verbosity = problem_.linearSolverVerbosity;
     // A linear problem's tangent changes with dt only (and little): CG on the last
     // factorization instead of a new one (SparseDirectSolver::reuseFactorization).
     options.reuseFactorization =

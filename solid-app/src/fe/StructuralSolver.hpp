@@ -96,7 +96,9 @@ struct ProblemDefinition
     std::vector<SurfaceTraction> tractions;
     std::vector<SurfaceForce> forces;
     NewtonSettings newton;
-    int linearSolverVerbosity = 0;
+    // MUMPS settings (ordering, BLR, refinement, threads, verbosity); symmetric and
+    // reuseFactorization are set by the solver (reuse for linear problems).
+    linalg::DirectSolverOptions linearSolver;
     bool printIterations = false; // rank 0 prints Newton progress
 };
 
@@ -198,6 +200,8 @@ public:
     const mesh::Mesh& mesh() const { return mesh_; }
     int numDofs() const { return 3 * mesh_.numNodes(); }
     int numFreeDofs() const { return numFree_; }
+    // The tangent's direct solver (timings, memory, BLR figures: statistics()).
+    const linalg::SparseDirectSolver& linearSolver() const { return *linear_; }
     int factorizationCount() const;
     int analysisCount() const;
     int rank() const { return rank_; }

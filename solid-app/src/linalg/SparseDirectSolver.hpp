@@ -5,14 +5,21 @@
 #include <mpi.h>
 
 #include <memory>
+#include <optional>
+#include <string>
 #include <vector>
 
 namespace fsi::linalg
 {
 
-// MUMPS ICNTL(7) values. Debian's MUMPS 5.5 has neither METIS nor SCOTCH compiled in:
-// Metis is computed by this wrapper (METIS_NodeND -> PERM_IN); Scotch falls back to MUMPS'
-// automatic choice.
+// Fill-reducing orderings: MUMPS ICNTL(7) values, and PtScotch (not an ICNTL(7) value: the
+// parallel analysis, ICNTL(28) = 2 with ICNTL(29) = 1). Metis is computed by this wrapper in
+// every MUMPS build (METIS_NodeND on the graph compressed to supervariables, e.g. the 3 dofs
+// of a node, handed over as PERM_IN, ICNTL(7) = 1): Debian's MUMPS has no METIS compiled in.
+// Scotch and PtScotch need the ptscotch build of MUMPS (libmumps-ptscotch-dev, what
+// cmake/FindMUMPS.cmake links when found); the plain build (libmumps-dev) falls back to MUMPS'
+// automatic choice for Scotch and rejects PtScotch. All other orderings run sequentially on
+// rank 0 (ICNTL(28) = 1), on any number of ranks.
 enum class Ordering : int
 {
     Amd = 0,
@@ -21,9 +28,34 @@ enum class Ordering : int
     Pord = 4,
     Metis = 5,
     Qamd = 6,
-    Automatic = 7
+    Automatic = 7,
+    PtScotch = 8
 };
 
+// True when the linked MUMPS has SCOTCH/PT-SCOTCH compiled in (ptscotch build): needed by
+// Ordering::PtScotch and by BLR (MUMPS clusters the BLR blocks of a front with SCOTCH; without
+// METIS or SCOTCH inside MUMPS the clusters are arbitrary and BLR neither compresses nor stays
+// accurate, so LowRank::Auto stays full-rank and LowRank::On is rejected).
+bool mumpsHasScotch();
+// True for the ptscotch build (Ordering::PtScotch).
+bool mumpsHasPtScotch();
+
+// Refinement stops at this normwise backward error |b - A x|_inf / (|A|_inf |x|_inf + |b|_inf)
+// even above refinementTolerance: a backward-stable full-rank solve ends there (rounding), so
+// further steps cannot lower the residual (ill-conditioned matrices: nu -> 0.5, slender parts).
+constexpr double kRoundingBackwardError = 1e-14;
+
+// Block low-rank (BLR) factorization, MUMPS ICNTL(35).
+enum class LowRank : int
+{
+    Off = 0,  // full-rank factorization (ICNTL(35) = 0)
+    On = 1,   // BLR factorization and solve (ICNTL(35) = 2)
+    Auto = 2  // On when the matrix has at least lowRankMinSize rows (and mumpsHasScotch()),
+              // Off below
+};
+
+// Every field's default is the documented one (config/solid.example.yaml, linear_solver block;
+// solid-app/src/linalg/README.md). validate() checks them (the constructor calls it).
 struct DirectSolverOptions
 {
     bool symmetric = true;         // symmetric matrix (LDL^T); false: general LU
@@ -34,6 +66,24 @@ struct DirectSolverOptions
     int ordering = static_cast<int>(Ordering::Metis); // ICNTL(7)
     int memoryRelaxationPercent = 30;                 // ICNTL(14); raised on INFOG(1) = -9
     int verbosity = 0;                                // 0 silent ... 4 MUMPS diagnostics
+    // BLR compression (ICNTL(35), ICNTL(36), CNTL(7)). The factor is approximate to about
+    // lowRankTolerance (relative); every solve with a BLR factor is checked and refined (below).
+    LowRank lowRank = LowRank::Off;
+    int lowRankMinSize = 100000;    // Auto: BLR for n >= this
+    double lowRankTolerance = 1e-9; // CNTL(7), the BLR dropping threshold
+    bool lowRankUcfs = true;        // ICNTL(36): true = UCFS (compress before the solve of the
+                                    // panel: fewer flops), false = UFSC (MUMPS' default)
+    // Residual check after a BLR solve: iterative refinement x += A_BLR^-1 (b - A x) until
+    // |b - A x| <= refinementTolerance |b|, at most maxRefinementSteps steps; when it misses,
+    // the matrix is factorized again without BLR (and stays full-rank for this solver).
+    double refinementTolerance = 1e-10;
+    int maxRefinementSteps = 10;
+    // Full-rank solves too: residual check and refinement (one sparse product per step; off:
+    // a full-rank solve is returned as MUMPS gives it, as before).
+    bool checkResidual = false;
+    // BLAS (OpenBLAS) and OpenMP threads per MPI rank, set when the solver is created;
+    // 0 = leave them to the environment (OPENBLAS_NUM_THREADS, OMP_NUM_THREADS).
+    int threadsPerRank = 1;
     // Symmetric only: when the values change but the pattern does not, first solve with
     // conjugate gradients preconditioned by the existing (stale) factorization; factorize only
     // when CG misses reuseTolerance within reuseMaxIterations, or needed more than
@@ -43,7 +93,50 @@ struct DirectSolverOptions
     double reuseTolerance = 1e-10;    // |b - A x| <= tol |b|
     int reuseMaxIterations = 25;
     int refactorAfterIterations = 12;
+
+    // The first value out of range: key as the solid config spells it (under linear_solver),
+    // the value and the fix; nullopt when all are valid.
+    struct Error
+    {
+        std::string key, value, fix;
+    };
+    std::optional<Error> firstError() const;
+    // Throws std::invalid_argument, one line: "linear_solver.<key> = <value> is invalid: <fix>".
+    void validate() const;
 };
+
+// Wall and CPU seconds of the phases (summed over the calls; CPU of this rank's process), and
+// what MUMPS reported for the last analysis/factorization.
+struct DirectSolverStatistics
+{
+    double analysisSeconds = 0.0, factorizationSeconds = 0.0, solveSeconds = 0.0;
+    double analysisCpuSeconds = 0.0, factorizationCpuSeconds = 0.0, solveCpuSeconds = 0.0;
+    double orderingSeconds = 0.0;       // part of analysisSeconds: this wrapper's METIS (rank 0)
+    long long estimatedMemoryMb = 0;    // INFOG(17): total over ranks, full-rank estimate
+    long long factorizationMemoryMb = 0; // INFOG(19): total over ranks, used by the factorization
+    long long maxRankMemoryMb = 0;      // INFOG(18): largest rank
+    double fullRankFlops = 0.0;         // RINFOG(3): elimination flops of a full-rank factor
+                                        // (after analysis: the estimate RINFOG(1))
+    double lowRankFlops = 0.0;          // RINFOG(14): flops of the BLR factorization (0: off)
+    bool lowRankActive = false;         // the last factorization used BLR
+    long long factorEntries = 0;        // INFOG(29): entries of the full-rank factor
+    long long lowRankFactorEntries = 0; // INFOG(35): entries kept by BLR (0: off)
+    int lowRankFallbacks = 0;           // BLR solves that missed the tolerance -> full rank
+    int refinementSteps = 0;            // total refinement steps over all solves
+    double lastRelativeResidual = -1.0; // |b - A x| / |b| of the last checked solve (-1: none)
+    std::vector<double> lastResiduals;  // the last checked solve: before and after each step
+    double lastBackwardError = -1.0;    // |b - A x|_inf / (|A|_inf |x|_inf + |b|_inf), last
+    std::vector<double> lastBackwardErrors; // the same, before and after each step
+};
+
+// BLAS library in use and its thread count, e.g. "OpenBLAS 0.3.21 ... Haswell SINGLE_THREADED"
+// ("reference or other BLAS" when it is not OpenBLAS). For logs and benchmarks.
+std::string blasDescription();
+
+// The options in the solid config's words, one line, e.g. "ordering metis, low_rank auto
+// (>= 100000 rows, tolerance 1e-09, ucfs), refinement 1e-10 x 10, memory_relaxation 30 %,
+// threads 1".
+std::string describe(const DirectSolverOptions& options);
 
 // Collective on comm: every rank calls every method (and the destructor, which must run
 // before MPI_Finalize) in the same order. Argument errors (sizes, indices) are checked
@@ -71,6 +164,10 @@ public:
     // Values in the same order as this rank's pattern (size == rows.size()). Marks the
     // factorization stale only if some value changed (bitwise) on some rank.
     void setValues(std::vector<double> values);
+
+    // Symbolic analysis only, if the pattern changed (no values needed): statistics() then
+    // holds MUMPS' estimates (memory INFOG(17), flops RINFOG(1)). For sizing runs.
+    void analyze();
 
     // Analysis if needed, then numerical factorization if stale; no-op otherwise.
     // Throws std::runtime_error with INFOG(1)/INFOG(2) and a hint (singular matrix:
@@ -100,6 +197,9 @@ public:
     int negativePivotCount() const { return negativePivots_; }
     // Entries in the factors of the last factorization (INFOG(29)): fill, for benchmarks.
     long long factorEntryCount() const { return factorEntries_; }
+    // Phase timings, memory and BLR figures (see DirectSolverStatistics).
+    const DirectSolverStatistics& statistics() const { return stats_; }
+    const DirectSolverOptions& options() const { return options_; }
     int size() const { return n_; }
     MPI_Comm communicator() const { return comm_; }
 
@@ -110,6 +210,11 @@ private:
     // CG preconditioned by the stale factorization; false (b untouched) when it misses the
     // tolerance. Collective; b/x significant on rank 0.
     bool solveWithStaleFactor(std::vector<double>& rhsAndSolution);
+    // With a BLR factor: residual check and iterative refinement of x for b (rank 0 data);
+    // true when |b - A x| <= refinementTolerance |b|. Collective.
+    bool refine(const std::vector<double>& b, std::vector<double>& x);
+    void analyse();
+    void factorizeNumerically();
     struct Handle; // owns DMUMPS_STRUC_C (dmumps_c.h only in the .cpp)
     std::unique_ptr<Handle> handle_;
     MPI_Comm comm_;
@@ -133,6 +238,10 @@ private:
     bool refreshFactor_ = false; // the last CG needed many iterations: factorize next time
     int negativePivots_ = 0;
     long long factorEntries_ = 0;
+    bool matrixNormStale_ = true;  // |A|_inf for the backward error (refine)
+    double matrixNorm_ = 0.0;
+    bool lowRankDisabled_ = false; // a BLR solve missed the tolerance: full rank from then on
+    DirectSolverStatistics stats_;
 };
 
 } // namespace fsi::linalg
