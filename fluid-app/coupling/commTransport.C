@@ -21,7 +21,6 @@
 
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -171,54 +170,14 @@ const char* const commHelp =
     "Run modes (system/fsiDict mode, or the options -coupled / -rigid / -prescribed below);\n"
     "-restart continues a coupled run together with solid-app --restart.\n\n";
 
-// The `mode` entry of <case>/system/fsiDict, read before OpenFOAM starts (a plain text
-// scan: the last line `mode <word>;` outside comments wins, as in OpenFOAM dictionaries);
-// "" when absent or unreadable.
-std::string fsiDictMode(int argc, char** argv)
-{
-    std::string caseDir = ".";
-    for (int i = 1; i + 1 < argc; ++i)
-        if (std::strcmp(argv[i], "-case") == 0)
-            caseDir = argv[i + 1];
-    std::ifstream in(caseDir + "/system/fsiDict");
-    std::string line, mode;
-    bool blockComment = false;
-    while (std::getline(in, line))
-    {
-        if (blockComment)
-        {
-            const auto end = line.find("*/");
-            if (end == std::string::npos)
-                continue;
-            line = line.substr(end + 2);
-            blockComment = false;
-        }
-        const auto start = line.find("/*");
-        if (start != std::string::npos)
-        {
-            blockComment = line.find("*/", start) == std::string::npos;
-            line = line.substr(0, start);
-        }
-        line = line.substr(0, line.find("//"));
-        std::istringstream words(line);
-        std::string key, value;
-        if (words >> key >> value && key == "mode")
-            mode = value.substr(0, value.find(';'));
-    }
-    return mode;
-}
-
 } // namespace
 
-void initialiseComm(int& argc, char**& argv)
+void initialiseComm(int& argc, char**& argv, RunMode mode)
 {
     try
     {
         // No coupling (and no MPI start here) for the uncoupled modes and OpenFOAM's help.
-        const std::string mode = fsiDictMode(argc, argv);
-        const bool uncoupled = hasFlag(argc, argv, "-rigid") || hasFlag(argc, argv, "-prescribed") ||
-                               ((mode == "rigid" || mode == "prescribed") &&
-                                !hasFlag(argc, argv, "-coupled"));
+        const bool uncoupled = mode != RunMode::coupled;
         const bool help = hasFlag(argc, argv, "-help") || hasFlag(argc, argv, "-help-full");
         if (uncoupled || help || hasFlag(argc, argv, "-doc") || hasFlag(argc, argv, "-srcDoc"))
         {
@@ -252,7 +211,7 @@ namespace fsi
 {
 namespace fluid
 {
-void initialiseComm(int&, char**&) {}
+void initialiseComm(int&, char**&, RunMode) {}
 bool commAvailable() { return false; }
 std::unique_ptr<CouplingTransport> makeCommTransport() { return nullptr; }
 } // namespace fluid

@@ -256,7 +256,15 @@ def t_bad_case(a):
     rc, log = run([a.fluid_app, "-rigid", "-case", d], os.path.join(d, "log.missing-key"))
     check(rc != 0 and "interfacePatch" in log and "fsiDict" in log,
           "missing interfacePatch key: exit %d, message names the key and the file" % rc)
+    # The run mode is resolved once, before OpenFOAM starts (fluid-app/coupling/runMode.H).
+    open(fsi, "w").write(good + "\nmode rigd;\n")
+    rc, log = run([a.fluid_app, "-case", d], os.path.join(d, "log.bad-mode"))
+    check(rc == 1 and "fsiDict: mode must be coupled, rigid or prescribed, got 'rigd'" in log,
+          "unknown fsiDict mode: exit %d, one-line error naming the file, the key and the choices" % rc)
     open(fsi, "w").write(good)
+    rc, log = run([a.fluid_app, "-rigid", "-coupled", "-case", d], os.path.join(d, "log.two-modes"))
+    check(rc == 1 and "give at most one of -rigid, -prescribed and -coupled" in log,
+          "two mode switches: exit %d, one-line error" % rc)
     restart = os.path.join(a.case_dir, "..", "..", "scripts", "fsi-restart-fluid")
     rc, log = run([restart, d, os.path.join(d, "no-solid-output")], os.path.join(d, "log.restart"))
     check(rc == 2 and "no checkpoint to restart from" in log,

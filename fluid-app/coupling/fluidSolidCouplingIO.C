@@ -1,0 +1,164 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// fluid-app: logging: postProcessing/fsi CSV files and the level fields (see fluidSolidCoupling.H).
+#include "fluidSolidCoupling.H"
+
+#include "OFstream.H"
+
+Foam::fileName Foam::fluidSolidCoupling::logDir() const
+{
+    return mesh_.time().globalPath()/"postProcessing"/"fsi";
+}
+
+
+void Foam::fluidSolidCoupling::openCouplingLogs(const bool restart)
+{
+    if (!Pstream::master())
+    {
+        return;
+    }
+    mkDir(logDir());
+    const bool append = restart && isFile(logDir()/"coupling.csv");
+    logFile_.reset
+    (
+        new OFstream
+        (
+            logDir()/"coupling.csv",
+            IOstream::ASCII,
+            IOstream::currentVersion,
+            IOstream::UNCOMPRESSED,
+            append
+        )
+    );
+    if (!append)
+    {
+        logFile_()
+            << "step,iteration,simpleIterations,converged,residualU,residualP,"
+            << "Fx,Fy,Fz,maxDisplacement,wall_s" << endl;
+    }
+    if (!restart || !isFile(logDir()/"accepted.csv"))
+    {
+        OFstream(logDir()/"accepted.csv")() << "step,time,timeName" << endl;
+    }
+}
+
+
+void Foam::fluidSolidCoupling::logSolve
+(
+    const fsi::fluid::Command& solve,
+    const SolveResult& r,
+    const vector& total,
+    const scalar maxDisplacement,
+    const scalar wallSeconds
+)
+{
+    if (Pstream::master())
+    {
+        logFile_()
+            << solve.step << ',' << solve.iteration << ',' << r.iterations << ','
+            << int(r.converged) << ',' << r.residualU << ',' << r.residualP << ','
+            << total.x() << ',' << total.y() << ',' << total.z() << ','
+            << maxDisplacement << ',' << wallSeconds << endl;
+    }
+}
+
+
+void Foam::fluidSolidCoupling::logAccepted(const fsi::fluid::Command& accept) const
+{
+    if (Pstream::master())
+    {
+        OFstream
+        (
+            logDir()/"accepted.csv",
+            IOstream::ASCII,
+            IOstream::currentVersion,
+            IOstream::UNCOMPRESSED,
+            true
+        )() << accept.step << ',' << accept.time << ',' << Time::timeName(accept.time) << endl;
+    }
+}
+
+
+void Foam::fluidSolidCoupling::writeRigidForces
+(
+    const SolveResult& r,
+    const vector& total,
+    const vector& pressure
+) const
+{
+    if (!Pstream::master())
+    {
+        return;
+    }
+    mkDir(logDir());
+    OFstream os(logDir()/"forces.csv");
+    os.precision(12);
+    const vector viscous(total - pressure);
+    os  << "Fx,Fy,Fz,pressureFx,pressureFy,pressureFz,viscousFx,viscousFy,viscousFz,"
+        << "simpleIterations,converged,residualU,residualP,clock_s" << nl
+        << total.x() << ',' << total.y() << ',' << total.z() << ','
+        << pressure.x() << ',' << pressure.y() << ',' << pressure.z() << ','
+        << viscous.x() << ',' << viscous.y() << ',' << viscous.z() << ','
+        << r.iterations << ',' << int(r.converged) << ',' << r.residualU << ','
+        << r.residualP << ',' << mesh_.time().elapsedClockTime() << nl;
+}
+
+
+void Foam::fluidSolidCoupling::writeInterfaceGeometry
+(
+    const fsi::fluid::InterfaceGeometry& geometry
+) const
+{
+    std::vector<double> faceData(6*nGlobalFaces_);
+    for (label i = 0; i < nGlobalFaces_ && Pstream::master(); ++i)
+    {
+        for (label c = 0; c < 3; ++c)
+        {
+            faceData[6*i + c] = geometry.faceCentres[3*i + c];
+            faceData[6*i + 3 + c] = geometry.faceAreaVectors[3*i + c];
+        }
+    }
+    writeInterfaceCsv("interfacePoints.csv", geometry.pointCoordinates, nGlobalPoints_, "i,x,y,z");
+    writeInterfaceCsv("interfaceFaces.csv", faceData, nGlobalFaces_, "i,cx,cy,cz,Sx,Sy,Sz");
+}
+
+
+void Foam::fluidSolidCoupling::writeInterfaceCsv
+(
+    const fileName& name,
+    const std::vector<double>& values,
+    const label n,
+    const std::string& header
+) const
+{
+    if (!Pstream::master() || !writeInterfaceData_)
+    {
+        return;
+    }
+    OFstream os(logDir()/name);
+    os.precision(17);
+    os  << header.c_str() << nl;
+    const label width = n ? label(values.size())/n : 0;
+    for (label i = 0; i < n; ++i)
+    {
+        os  << i;
+        for (label c = 0; c < width; ++c)
+        {
+            os  << ',' << values[width*i + c];
+        }
+        os  << nl;
+    }
+}
+
+
+void Foam::fluidSolidCoupling::writeLevel(const scalar time)
+{
+    Time& runTime = const_cast<Time&>(mesh_.time());
+    const scalar iterTime = runTime.value();
+    const label iterIndex = runTime.timeIndex();
+    runTime.setTime(time, iterIndex);
+    Info<< "fsi: writing fields to time " << runTime.timeName() << nl << endl;
+    runTime.writeNow();
+    runTime.setTime(iterTime, iterIndex);
+}
+
+// ************************************************************************* //

@@ -1,0 +1,126 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// fluid-app: interface motion and the mesh-quality guard (see fluidSolidCoupling.H).
+#include "fluidSolidCoupling.H"
+
+#include "fvc.H"
+#include "pointFields.H"
+#include "valuePointPatchFields.H"
+#include "fixedValuePointPatchFields.H"
+#include "polyMeshTools.H"
+#include "unitConversion.H"
+#include "clockTime.H"
+
+void Foam::fluidSolidCoupling::moveInterface
+(
+    const std::vector<double>& globalDisplacement
+)
+{
+    if (label(globalDisplacement.size()) != 3*nGlobalPoints_)
+    {
+        failWith
+        (
+            "SOLVE carried " + Foam::name(label(globalDisplacement.size()/3))
+          + " interface displacements, the fluid interface has "
+          + Foam::name(nGlobalPoints_) + " points"
+        );
+    }
+    forAll(displacement_, i)
+    {
+        const label g = pointToGlobal_[i];
+        displacement_[i] = vector
+        (
+            globalDisplacement[3*g],
+            globalDisplacement[3*g + 1],
+            globalDisplacement[3*g + 2]
+        );
+    }
+
+    pointVectorField* pdPtr =
+        mesh_.lookupObjectRefPtr<pointVectorField>("pointDisplacement");
+    if (!pdPtr)
+    {
+        failWith
+        (
+            "no pointDisplacement field: constant/dynamicMeshDict must select "
+            "dynamicMotionSolverFvMesh with the displacementLaplacian solver"
+        );
+    }
+    pointPatchVectorField& ppf = pdPtr->boundaryFieldRef()[patchi_];
+    if (!isA<fixedValuePointPatchVectorField>(ppf))
+    {
+        failWith
+        (
+            "0/pointDisplacement: patch " + patchName_ + " must be fixedValue, is "
+          + ppf.type()
+        );
+    }
+    refCast<valuePointPatchVectorField>(ppf) == displacement_;
+
+    const clockTime clock;
+    mesh_.update();
+
+    // The interface points must sit exactly on the prescribed positions
+    const labelList& meshPoints = mesh_.boundaryMesh()[patchi_].meshPoints();
+    scalar maxError = 0;
+    forAll(meshPoints, i)
+    {
+        maxError =
+            max(maxError, mag(mesh_.points()[meshPoints[i]] - (points0_[i] + displacement_[i])));
+    }
+    reduce(maxError, maxOp<scalar>());
+    if (maxError > 1e-9*mesh_.bounds().mag())
+    {
+        WarningInFunction
+            << "interface points are off the received positions by " << maxError
+            << " m (2-D case with a displacement normal to the empty planes?)" << endl;
+    }
+    Info<< "fsi: mesh moved in " << clock.elapsedTime() << " s; max |x - (x0 + d)| on "
+        << patchName_ << " = " << maxError << " m, max |d| = "
+        << gMax(mag(displacement_)()) << " m" << endl;
+
+    if (!meshQualityOk())
+    {
+        failWith
+        (
+            "mesh quality check failed after the interface motion (limits in "
+            "system/fsiDict meshQuality); the last accepted level stays written"
+        );
+    }
+
+    // Steady: fluxes from U on the moved mesh, no mesh-flux terms
+    phi_ = fvc::flux(U_);
+}
+
+
+bool Foam::fluidSolidCoupling::meshQualityOk() const
+{
+    const scalar minVol = gMin(mesh_.V().field());
+    const scalarField ortho
+    (
+        polyMeshTools::faceOrthogonality(mesh_, mesh_.faceAreas(), mesh_.cellCentres())
+    );
+    const scalarField skew
+    (
+        polyMeshTools::faceSkewness
+        (
+            mesh_, mesh_.points(), mesh_.faceCentres(), mesh_.faceAreas(), mesh_.cellCentres()
+        )
+    );
+    const scalar minOrtho = gMin(ortho);
+    const scalar maxNonOrth = radToDeg(Foam::acos(min(scalar(1), max(scalar(-1), minOrtho))));
+    const scalar maxSkew = gMax(skew);
+    // Negative pyramid volumes = inverted or tangled cells
+    const bool badPyramids =
+        static_cast<const primitiveMesh&>(mesh_).checkFacePyramids(false, -SMALL);
+
+    const bool ok =
+        minVol > 0 && !badPyramids && maxNonOrth < maxNonOrth_ && maxSkew < maxSkewness_;
+    Info<< "fsi: mesh after motion: min volume " << minVol
+        << " m^3, max non-orthogonality " << maxNonOrth
+        << " deg, max skewness " << maxSkew
+        << (badPyramids ? ", NEGATIVE face pyramids (inverted cells)" : "")
+        << (ok ? "  [ok]" : "  [FAILED]") << endl;
+    return ok;
+}
+
+// ************************************************************************* //

@@ -1,0 +1,69 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// fluid-app: the stopping rule of one steady solve (see steadyConvergence.H).
+#include "steadyConvergence.H"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fsi
+{
+namespace fluid
+{
+
+SteadyConvergence::SteadyConvergence(const SolveControls& controls, double residualTolU,
+                                     double residualTolP)
+    : controls_(controls), residualTolU_(residualTolU), residualTolP_(residualTolP)
+{
+}
+
+bool SteadyConvergence::update(int iteration, double residualU, double residualP,
+                               const double force[3])
+{
+    if (iteration == 1)
+    {
+        firstU_ = residualU;
+        firstP_ = residualP;
+    }
+    const bool residualOk = residualsMet(residualU, residualP);
+    const bool forceOk = controls_.forceTolerance <= 0 || forceMet(iteration, force);
+    stable_ = (residualOk && forceOk) ? stable_ + 1 : 0;
+    return stable_ >= controls_.stableIterations && iteration >= controls_.minIterations;
+}
+
+double SteadyConvergence::estimatedForceError(const std::vector<double>& changes)
+{
+    const std::size_t m = changes.size();
+    double rho = 0.9;
+    if (m >= 4 && changes[m - 4] > 1e-300)
+        rho = std::pow(changes[m - 1] / changes[m - 4], 1.0 / 3.0);
+    rho = std::min(std::max(rho, 0.0), 0.98);
+    return changes[m - 1] * rho / (1 - rho);
+}
+
+bool SteadyConvergence::residualsMet(double residualU, double residualP) const
+{
+    if (!controls_.residualRequired)
+        return true;
+    const bool dropOk = controls_.residualDrop > 0 &&
+                        residualU <= controls_.residualDrop * firstU_ &&
+                        residualP <= controls_.residualDrop * firstP_;
+    const bool absoluteOk = residualU <= residualTolU_ && residualP <= residualTolP_;
+    return dropOk || absoluteOk;
+}
+
+bool SteadyConvergence::forceMet(int iteration, const double force[3])
+{
+    const double change = std::sqrt(std::pow(force[0] - previousForce_[0], 2) +
+                                    std::pow(force[1] - previousForce_[1], 2) +
+                                    std::pow(force[2] - previousForce_[2], 2));
+    std::copy(force, force + 3, previousForce_);
+    if (iteration == 1)
+        return false;
+    forceChanges_.push_back(change);
+    const double error = controls_.estimateError ? estimatedForceError(forceChanges_) : change;
+    const double magF = std::sqrt(force[0] * force[0] + force[1] * force[1] + force[2] * force[2]);
+    return error <= controls_.forceTolerance * magF;
+}
+
+} // namespace fluid
+} // namespace fsi
