@@ -76,8 +76,7 @@ TEST(SteadyConvergence, EstimateAssumesRho09UntilFourChangesAndClipsAt098)
 {
     EXPECT_NEAR(SteadyConvergence::estimatedForceError({2.0, 1.0, 0.5}), 0.5 * 9.0, 1e-14);
     // growing changes: rho clipped to 0.98, error = 49 * last change
-    EXPECT_NEAR(SteadyConvergence::estimatedForceError({1.0, 2.0, 4.0, 8.0}), 8.0 * 49.0,
-                1e-12);
+    EXPECT_NEAR(SteadyConvergence::estimatedForceError({1.0, 2.0, 4.0, 8.0}), 8.0 * 49.0, 1e-12);
 }
 
 TEST(SteadyConvergence, ForceErrorCriterionStopsWhenTheTrueErrorMeetsTheTolerance)
