@@ -105,21 +105,23 @@ linalg::DirectSolverOptions parseLinearSolver(const Block& b)
     return o;
 }
 
-NewtonParameters NewtonParameters::parse(const Block& b)
+fe::NewtonSettings parseNewton(const Block& b)
 {
     b.allowOnly({"max_iterations", "residual_tolerance", "absolute_tolerance", "line_search",
                  "max_load_cuts"});
-    NewtonParameters p;
+    fe::NewtonSettings p;
     p.maxIterations = b.integer("max_iterations", p.maxIterations);
     p.residualTolerance = b.number("residual_tolerance", p.residualTolerance);
     p.absoluteTolerance = b.number("absolute_tolerance", p.absoluteTolerance);
     // true/false: the former switch (line search on every step / never)
-    p.lineSearch =
-        b.choice("line_search", {"fallback", "always", "never", "true", "false"}, p.lineSearch);
-    if (p.lineSearch == "true")
-        p.lineSearch = "always";
-    else if (p.lineSearch == "false")
-        p.lineSearch = "never";
+    std::string lineSearch =
+        b.choice("line_search", {"fallback", "always", "never", "true", "false"},
+                 std::string(fe::toString(p.lineSearch)));
+    if (lineSearch == "true")
+        lineSearch = "always";
+    else if (lineSearch == "false")
+        lineSearch = "never";
+    p.lineSearch = fe::lineSearchFromName(lineSearch);
     p.maxLoadCuts = b.integer("max_load_cuts", p.maxLoadCuts);
     if (p.maxIterations < 1)
         b.fail("max_iterations", "must be >= 1");
@@ -145,7 +147,7 @@ LoadParameters LoadParameters::parse(const Block& b)
         for (const Block& d : b.blockList("displacements"))
         {
             d.allowOnly({"surface", "x", "y", "z"});
-            DisplacementLoad load;
+            fe::PrescribedDisplacement load;
             load.surface = d.text("surface");
             const char* names[3] = {"x", "y", "z"};
             for (int c = 0; c < 3; ++c)
@@ -369,12 +371,15 @@ OutputParameters OutputParameters::parse(const Block& b, const std::string& conf
 
 SolidConfig SolidConfig::load(const std::string& file)
 {
-    const Block root = Block::load(file);
+    return fromRoot(Block::load(file), file);
+}
+
+SolidConfig SolidConfig::fromRoot(const Block& root, const std::string& file)
+{
     const std::string dir = fs::path(file).parent_path().string();
     root.allowOnly({"solid", "coupling"});
     SolidConfig c;
     c.file = file;
-    c.hasCoupling = root.has("coupling");
     const Block s = root.block("solid");
     s.allowOnly({"mesh", "material", "kinematics", "element", "newton", "linear_solver", "loads",
                  "time", "output"});
@@ -395,7 +400,7 @@ SolidConfig SolidConfig::load(const std::string& file)
         c.elementType = e->choice("type", {"displacement", "projected-dilatation"});
     }
     if (auto n = s.optionalBlock("newton"))
-        c.newton = NewtonParameters::parse(*n);
+        c.newton = parseNewton(*n);
     if (auto l = s.optionalBlock("linear_solver"))
         c.linearSolver = parseLinearSolver(*l);
     c.loads = LoadParameters::parse(s.block("loads"));
@@ -448,8 +453,8 @@ std::string SolidConfig::echo() const
     o << "  newton: {max_iterations: " << newton.maxIterations
       << ", residual_tolerance: " << newton.residualTolerance
       << ", absolute_tolerance: " << newton.absoluteTolerance
-      << ", line_search: " << newton.lineSearch << ", max_load_cuts: " << newton.maxLoadCuts
-      << "}\n";
+      << ", line_search: " << fe::toString(newton.lineSearch)
+      << ", max_load_cuts: " << newton.maxLoadCuts << "}\n";
     o << "  linear_solver: {verbosity: " << linearSolver.verbosity << "}  # "
       << linalg::describe(linearSolver) << "\n";
     o << "  loads:\n";

@@ -2,6 +2,7 @@
 // The solid's parameters (YAML block `solid:`), each struct parsed and validated in one
 // place. Every key is documented in config/solid.example.yaml. Units SI.
 #pragma once
+#include "fe/Settings.hpp"
 #include "linalg/SparseDirectSolver.hpp"
 #include "material/Material.hpp"
 #include "material/MaterialParameters.hpp"
@@ -25,21 +26,8 @@ struct MeshParameters
     static MeshParameters parse(const Block& b, const std::string& configDir);
 };
 
-struct NewtonParameters
-{
-    int maxIterations = 25;
-    double residualTolerance = 1e-8;  // relative to the reference force norm
-    double absoluteTolerance = 1e-10; // [N]
-    std::string lineSearch = "fallback"; // fallback | always | never (fe::LineSearch)
-    int maxLoadCuts = 6; // load sub-stepping: halve up to this many times
-    static NewtonParameters parse(const Block& b);
-};
-
-struct DisplacementLoad
-{
-    std::string surface;
-    std::array<std::optional<double>, 3> value; // [m] per component (unset = free)
-};
+// solid.newton into fe::NewtonSettings (one-line errors).
+fe::NewtonSettings parseNewton(const Block& b);
 
 struct TractionLoad
 {
@@ -57,7 +45,7 @@ struct LoadParameters
 {
     std::array<double, 3> gravity{}; // [m/s^2], needs solid.material.density
     bool hasGravity = false;
-    std::vector<DisplacementLoad> displacements;
+    std::vector<fe::PrescribedDisplacement> displacements; // value per component (no field)
     std::vector<TractionLoad> tractions;
     std::vector<NodalForceLoad> forces;
     static LoadParameters parse(const Block& b);
@@ -132,7 +120,7 @@ struct SolidConfig
     // solid.element.type: "displacement" (default) | "projected-dilatation" (B-bar / F-bar
     // hexahedra that do not lock for nu -> 0.5; fe::formulationFromName()).
     std::string elementType = "displacement";
-    NewtonParameters newton;
+    fe::NewtonSettings newton;
     // solid.linear_solver: MUMPS settings (verbosity, ordering, BLR, refinement, threads);
     // defaults as documented in config/solid.example.yaml. symmetric and reuseFactorization are
     // set by fe::StructuralSolver.
@@ -140,10 +128,11 @@ struct SolidConfig
     LoadParameters loads;
     TimeParameters time;
     OutputParameters output;
-    bool hasCoupling = false; // top-level `coupling:` block present (driver)
 
     // Reads and validates `file`. Throws std::runtime_error (one line: file, key, fix).
     static SolidConfig load(const std::string& file);
+    // The same from the already loaded document `root` of `file` (read the YAML once).
+    static SolidConfig fromRoot(const Block& root, const std::string& file);
     // The resolved values as YAML (printed at start-up, written to the output folder).
     std::string echo() const;
 };

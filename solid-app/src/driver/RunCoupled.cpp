@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "driver/RunCoupled.hpp"
 
-#include "Standalone.hpp"
 #include "config/SolidConfig.hpp"
 #include "config/YamlReader.hpp"
 #include "driver/CommFluidPeer.hpp"
@@ -13,6 +12,7 @@
 #include "io/VtuWriter.hpp"
 #include "material/Material.hpp"
 #include "mesh/Mesh.hpp"
+#include "setup/SolidSetup.hpp"
 
 #include <cstdio>
 #include <cstring>
@@ -56,22 +56,23 @@ void endMpmdLaunchOnError(const std::exception& error)
         comm::exitOnError(error, nullptr, comm::ErrorScope::AllRanks);
 }
 
-int runCoupled(const std::string& configFile, const std::string& outputFolder, bool restart)
+int runCoupled(const config::Block& root, const std::string& configFile,
+               const std::string& outputFolder, bool restart)
 {
     std::optional<comm::Channel> channel;
     try
     {
-        const config::SolidConfig cfg = config::SolidConfig::load(configFile);
-        const CouplingParameters params =
-            CouplingParameters::parse(config::Block::load(configFile).block("coupling"));
+        const config::SolidConfig cfg = config::SolidConfig::fromRoot(root, configFile);
+        const CouplingParameters params = CouplingParameters::parse(root.block("coupling"));
         if (cfg.mesh.wetted.empty())
             throw std::runtime_error(configFile + ": solid.mesh.wetted is required in a coupled run "
                                                   "(the interface surface group)");
         const comm::LaunchOptions launch = flagLaunch ? *flagLaunch : launchFrom(params.launch);
 
         // The mesh first (no MPI): the handshake announces the wetted node count.
-        const mesh::Mesh mesh = mesh::readGmsh(cfg.mesh.file, {cfg.mesh.volume, app::surfacesOf(cfg)}, true);
-        app::checkWatchPoints(cfg, mesh);
+        const mesh::Mesh mesh =
+            mesh::readGmsh(cfg.mesh.file, {cfg.mesh.volume, setup::surfaceGroups(cfg)}, true);
+        setup::checkWatchPoints(cfg, mesh);
         const long wettedNodes = static_cast<long>(mesh.surface(cfg.mesh.wetted).nodes.size());
         channel.emplace(comm::Channel::open(launch, {comm::Role::Solid, "solid-app", {wettedNodes}},
                                             {"fluid-app", 0, {}}));
@@ -84,7 +85,7 @@ int runCoupled(const std::string& configFile, const std::string& outputFolder, b
             if (root)
             {
                 // After the fluid connected: a failed start leaves an earlier run's folder alone.
-                app::prepareOutputFolder(out, restart);
+                setup::prepareOutputFolder(out, restart);
                 const std::string echo = cfg.echo() + params.echo();
                 std::printf("%s", echo.c_str());
                 io::writeFileAtomically((fs::path(out) / "config.echo.yaml").string(), echo);
@@ -94,7 +95,7 @@ int runCoupled(const std::string& configFile, const std::string& outputFolder, b
                 std::printf("%s\n", cfg.material.describe().c_str());
             }
             const auto law = material::makeMaterial(cfg.material, cfg.kinematics);
-            fe::StructuralSolver solid(comm, mesh, *law, app::problemFromConfig(cfg));
+            fe::StructuralSolver solid(comm, mesh, *law, setup::problemFromConfig(cfg));
             CommFluidPeer fluid(*channel);
 
             LevelProbes probes;

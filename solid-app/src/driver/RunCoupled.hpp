@@ -15,6 +15,11 @@
 #include <exception>
 #include <string>
 
+namespace fsi::config
+{
+class Block;
+}
+
 namespace fsi::driver
 {
 
@@ -27,8 +32,10 @@ void takeLaunchFlags(int& argc, char** argv);
 // ends the whole job at once (MPI_Abort). Otherwise returns, and main exits as usual.
 void endMpmdLaunchOnError(const std::exception& error);
 
-// Runs the coupled case; collective over this program's ranks. Returns the exit code; errors
+// Runs the coupled case of `configFile`, whose YAML document main has read once (`root`, with
+// its `coupling:` block); collective over this program's ranks. Returns the exit code; errors
 // end the run through fsi::comm (the fluid is told why) with a one-line message.
-int runCoupled(const std::string& configFile, const std::string& outputFolder, bool restart = false);
+int runCoupled(const config::Block& root, const std::string& configFile,
+               const std::string& outputFolder, bool restart = false);
 
 } // namespace fsi::driver

@@ -21,6 +21,7 @@
 // converged (throws otherwise). Loads given to solve() REPLACE those of the previous call.
 #pragma once
 #include "fe/ElementKernel.hpp"
+#include "fe/Settings.hpp"
 #include "linalg/SparseDirectSolver.hpp"
 #include "material/Material.hpp"
 #include "mesh/Mesh.hpp"
@@ -37,39 +38,6 @@
 
 namespace fsi::fe
 {
-
-// Energy line search (Crisfield: secant on s(alpha) = du . R(u + alpha du)):
-//   Fallback  full Newton steps first; only if that attempt fails (stall, divergence,
-//             inadmissible step) the same start is retried with the line search. Where plain
-//             Newton converges it takes the same iterations (slender finite-strain problems:
-//             the line search would shorten good steps whose residual grows on the way).
-//   Always    the line search on every step.
-//   Never     plain Newton (then load cuts).
-enum class LineSearch
-{
-    Fallback,
-    Always,
-    Never
-};
-
-struct NewtonSettings
-{
-    int maxIterations = 25;
-    double residualTolerance = 1e-8;  // ||R_free|| <= rtol * max(||f_ext||, ||f_int||) + atol
-    double absoluteTolerance = 1e-10; // [N]
-    LineSearch lineSearch = LineSearch::Fallback;
-    int maxLoadCuts = 6;              // failed level: retry in 2, 4, ... 2^k load sub-steps
-};
-
-struct PrescribedDisplacement
-{
-    std::string surface;
-    std::array<std::optional<double>, 3> value; // [m]; unset components are free
-    // Optional field u(X, loadFactor) [m] of the reference position: if set it prescribes all
-    // three components at each node of the surface (value is then ignored; the field gets the
-    // load factor itself, e.g. a rotation angle, and is not scaled).
-    std::function<Eigen::Vector3d(const Eigen::Vector3d&, double)> field;
-};
 
 struct SurfaceTraction
 {
