@@ -1,15 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // fluid-app: the coupled transport over fsi::comm (compiled as C++17, no
-// OpenFOAM headers). Protocol of the fluid side (DESIGN.md section 4):
-//   Channel::open (Hello: role fluid, program "fluid-app", interface sizes
-//     {nPoints, nFaces}) -> InterfaceGeometry: values = point coordinates
-//     (3 nPoints), face centres (3 nFaces), face area vectors (3 nFaces);
-//   loop: Solve (values = 3 nPoints displacements [m], scalars = {time[, force tolerance,
-//     residual drop]}, integers = {[min SIMPLE iterations]}) -> Forces (values =
-//     3 nFaces forces [N], integers = {SIMPLE iterations, converged 0/1}, scalars =
-//     {residual U, residual p}, same step/iteration as the Solve);
-//     Accept (scalars[0] = time [s] if given, else the step index names the
-//     output folder); Finish -> close, exit 0; Abort -> exit 5 with the reason.
+// OpenFOAM headers). The messages and their payloads are those of
+// fsi/comm/Protocol.hpp (the one description of the wire format, shared with
+// solid-app): Channel::open (Hello: role fluid, program "fluid-app", interface
+// sizes {nPoints, nFaces}) -> InterfaceGeometry; then Solve -> Forces, Accept,
+// and Finish (close, exit 0) or Abort (exit non-zero with the peer's reason).
 #include "couplingTransport.H"
 
 #ifdef FSI_FLUID_WITH_COMM
@@ -18,6 +13,7 @@
 #include "fsi/comm/Errors.hpp"
 #include "fsi/comm/LaunchOptions.hpp"
 #include "fsi/comm/MpmdWorld.hpp"
+#include "fsi/comm/Protocol.hpp"
 
 #include <cstdio>
 #include <cstring>
@@ -45,16 +41,10 @@ public:
             self.program = "fluid-app";
             self.interfaceSizes = {nPoints, nFaces};
             channel_.emplace(comm::Channel::open(options_, self));
-            comm::Message m;
-            m.kind = comm::MessageKind::InterfaceGeometry;
+            comm::protocol::InterfaceGeometry g;
             if (channel_->isRoot())
-            {
-                m.values = geometry.pointCoordinates;
-                m.values.insert(m.values.end(), geometry.faceCentres.begin(),
-                                geometry.faceCentres.end());
-                m.values.insert(m.values.end(), geometry.faceAreaVectors.begin(),
-                                geometry.faceAreaVectors.end());
-            }
+                g = {geometry.pointCoordinates, geometry.faceCentres, geometry.faceAreaVectors};
+            const comm::Message m = comm::protocol::encode(g);
             channel_->send(m);
         });
     }
@@ -66,24 +56,23 @@ public:
             comm::Message m = channel_->receiveAny();
             c.step = static_cast<int>(m.timeStep);
             c.iteration = static_cast<int>(m.iteration);
-            c.time = static_cast<double>(m.timeStep);
             switch (m.kind)
             {
             case comm::MessageKind::Solve:
+            {
+                comm::protocol::Solve solve = comm::protocol::decodeSolve(std::move(m));
                 c.kind = CommandKind::solve;
-                c.displacements = std::move(m.values); // master only
-                if (m.scalars.size() >= 3)
-                {
-                    c.accuracyGiven = true;
-                    c.forceTolerance = m.scalars[1];
-                    c.residualDrop = m.scalars[2];
-                    c.minIterations = m.integers.empty() ? 1 : static_cast<int>(m.integers[0]);
-                }
+                c.time = solve.time;
+                c.displacements = std::move(solve.displacements); // master only
+                c.accuracyGiven = solve.accuracyGiven;
+                c.forceTolerance = solve.forceTolerance;
+                c.residualDrop = solve.residualDrop;
+                c.minIterations = static_cast<int>(solve.minIterations);
                 break;
+            }
             case comm::MessageKind::Accept:
                 c.kind = CommandKind::accept;
-                if (!m.scalars.empty())
-                    c.time = m.scalars[0];
+                c.time = comm::protocol::decodeAccept(m).time;
                 break;
             case comm::MessageKind::Finish:
                 c.kind = CommandKind::finish;
@@ -102,14 +91,14 @@ public:
     void sendForces(const Command& solve, const ForceReport& report) override
     {
         guard([&] {
-            comm::Message m;
-            m.kind = comm::MessageKind::Forces;
-            m.timeStep = solve.step;
-            m.iteration = solve.iteration;
-            m.values = report.faceForces;
-            m.integers = {report.simpleIterations, report.converged ? 1 : 0};
-            m.scalars = report.residuals;
-            channel_->send(m);
+            comm::protocol::Forces f;
+            f.level = solve.step;
+            f.iteration = solve.iteration;
+            f.faceForces = report.faceForces;
+            f.iterations = report.simpleIterations;
+            f.converged = report.converged;
+            f.residuals = report.residuals;
+            channel_->send(comm::protocol::encode(f));
         });
     }
 

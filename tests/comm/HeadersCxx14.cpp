@@ -8,6 +8,7 @@
 #include "fsi/comm/Message.hpp"
 #include "fsi/comm/MpmdWorld.hpp"
 #include "fsi/comm/PortFile.hpp"
+#include "fsi/comm/Protocol.hpp"
 
 #include <memory>
 

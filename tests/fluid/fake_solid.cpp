@@ -7,7 +7,7 @@
 //                   [--out CSV] [--abort-at-step S] [--expect-fluid-ranks R]
 //                   [--die-at-step S [--die-signal N]]
 // Per step s = 1..N and iteration k = 1..K it sends Solve(displacement of a rotation by
-// s/N * DEG), checks the Forces reply (3 nFaces values, 1 integer, 2 scalars), then sends
+// s/N * DEG), checks the Forces reply (fsi/comm/Protocol.hpp, 2 residuals), then sends
 // Accept(s, time = 10 s) and finally Finish. --abort-at-step sends Abort instead of the
 // first Solve of that step. --die-at-step sends the first Solve of that step and then raises
 // signal N (default 9, SIGKILL) while the fluid solves. Writes one CSV row per Forces reply
@@ -16,6 +16,7 @@
 #include "fsi/comm/Errors.hpp"
 #include "fsi/comm/LaunchOptions.hpp"
 #include "fsi/comm/MpmdWorld.hpp"
+#include "fsi/comm/Protocol.hpp"
 
 #include <cmath>
 #include <csignal>
@@ -49,7 +50,8 @@ Flags parse(int argc, char** argv)
     for (int i = 1; i < argc; ++i)
     {
         const std::string a = argv[i];
-        auto next = [&]() -> std::string {
+        auto next = [&]() -> std::string
+        {
             if (i + 1 >= argc)
                 throw std::runtime_error("fake_solid: " + a + " needs a value");
             return argv[++i];
@@ -104,8 +106,8 @@ int main(int argc, char** argv)
         channel.emplace(Channel::open(launch, {Role::Solid, "fake-solid", {0}}, expect));
         const std::int64_t nPoints = channel->peer().interfaceSizes.at(0);
         const std::int64_t nFaces = channel->peer().interfaceSizes.at(1);
-        const Message geometry = channel->receive(MessageKind::InterfaceGeometry);
-        require(geometry.valueCount == 3 * (nPoints + 2 * nFaces), "InterfaceGeometry size");
+        const protocol::InterfaceGeometry geometry = protocol::decodeGeometry(
+            channel->receive(MessageKind::InterfaceGeometry), nPoints, nFaces);
         const bool root = channel->isRoot();
 
         std::ofstream csv;
@@ -123,9 +125,9 @@ int main(int argc, char** argv)
                 if (s == flags.abortAtStep)
                 {
                     // Sends Abort(reason) to the fluid, closes, finalises, exits 1.
-                    exitOnError(std::runtime_error("fake-solid: test abort at step " +
-                                                   std::to_string(s)),
-                                &*channel, ErrorScope::AllRanks);
+                    exitOnError(
+                        std::runtime_error("fake-solid: test abort at step " + std::to_string(s)),
+                        &*channel, ErrorScope::AllRanks);
                 }
                 std::vector<double> d;
                 if (root)
@@ -134,13 +136,18 @@ int main(int argc, char** argv)
                     d.assign(3 * nPoints, 0.0);
                     for (std::int64_t i = 0; i < nPoints; ++i)
                     {
-                        const double rx = geometry.values[3 * i] - flags.origin[0];
-                        const double ry = geometry.values[3 * i + 1] - flags.origin[1];
+                        const double rx = geometry.points[3 * i] - flags.origin[0];
+                        const double ry = geometry.points[3 * i + 1] - flags.origin[1];
                         d[3 * i] = std::cos(t) * rx - std::sin(t) * ry - rx;
                         d[3 * i + 1] = std::sin(t) * rx + std::cos(t) * ry - ry;
                     }
                 }
-                channel->send(MessageKind::Solve, s, k, d);
+                protocol::Solve solve;
+                solve.level = s;
+                solve.iteration = k;
+                solve.time = 10.0 * s;
+                solve.displacements = std::move(d);
+                channel->send(protocol::encode(solve));
                 if (s == flags.dieAtStep)
                 {
                     std::printf("fake-solid: test: raising signal %d after Solve of step %d\n",
@@ -148,33 +155,25 @@ int main(int argc, char** argv)
                     std::fflush(stdout);
                     std::raise(flags.dieSignal);
                 }
-                const Message f = channel->receive(MessageKind::Forces);
-                require(f.timeStep == s && f.iteration == k, "Forces step/iteration");
-                require(f.valueCount == 3 * nFaces, "Forces size");
-                require(f.integers.size() == 2 && (f.integers[1] == 0 || f.integers[1] == 1) &&
-                            f.scalars.size() == 2,
-                        "Forces payload {iterations, converged 0/1}, {residual U, p}");
+                const protocol::Forces f =
+                    protocol::decodeForces(channel->receive(MessageKind::Forces), s, k, nFaces);
+                require(f.residuals.size() == 2, "Forces residuals {U, p}");
                 if (root)
                 {
                     double F[3] = {0, 0, 0};
                     for (std::int64_t i = 0; i < nFaces; ++i)
                         for (int c = 0; c < 3; ++c)
-                            F[c] += f.values[3 * i + c];
+                            F[c] += f.faceForces[3 * i + c];
                     std::printf("fake-solid: step %d iteration %d: fluid iterations %lld, "
                                 "residuals %.3e %.3e, force (%.10g %.10g %.10g) N\n",
-                                s, k, static_cast<long long>(f.integers[0]), f.scalars[0],
-                                f.scalars[1], F[0], F[1], F[2]);
+                                s, k, static_cast<long long>(f.iterations), f.residuals[0],
+                                f.residuals[1], F[0], F[1], F[2]);
                     if (csv)
-                        csv << s << ',' << k << ',' << f.integers[0] << ',' << f.scalars[0]
-                            << ',' << f.scalars[1] << ',' << F[0] << ',' << F[1] << ','
-                            << F[2] << '\n';
+                        csv << s << ',' << k << ',' << f.iterations << ',' << f.residuals[0] << ','
+                            << f.residuals[1] << ',' << F[0] << ',' << F[1] << ',' << F[2] << '\n';
                 }
             }
-            Message accept;
-            accept.kind = MessageKind::Accept;
-            accept.timeStep = s;
-            accept.scalars = {10.0 * s};
-            channel->send(accept);
+            channel->send(protocol::encode(protocol::Accept{s, 10.0 * s}));
         }
         channel->send(MessageKind::Finish, flags.steps, 0);
         channel->close();

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "driver/CommFluidPeer.hpp"
 
+#include "fsi/comm/Protocol.hpp"
+
 #include <algorithm>
 #include <stdexcept>
 
@@ -9,13 +11,11 @@ namespace fsi::driver
 
 namespace
 {
-mapping::PointCloud rows(const std::vector<double>& v, std::size_t offset, Eigen::Index count)
+// An n x 3 row-major array of the wire as the driver's n x 3 matrix (same layout).
+template <class Matrix> Matrix rows(const std::vector<double>& xyz)
 {
-    mapping::PointCloud c(count, 3);
-    for (Eigen::Index i = 0; i < count; ++i)
-        for (int k = 0; k < 3; ++k)
-            c(i, k) = v[offset + 3 * i + k];
-    return c;
+    return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(
+        xyz.data(), static_cast<Eigen::Index>(xyz.size() / 3), 3);
 }
 } // namespace
 
@@ -25,17 +25,13 @@ CommFluidPeer::CommFluidPeer(comm::Channel& channel) : channel_(channel)
     if (sizes.size() != 2 || sizes[0] <= 0 || sizes[1] <= 0)
         throw std::runtime_error("fluid-app announced interface sizes that are not {points > 0, faces > 0}: "
                                  "check the interface patch of the fluid case");
-    const Eigen::Index points = sizes[0], faces = sizes[1];
-    auto m = channel_.receive(comm::MessageKind::InterfaceGeometry);
-    if (m.valueCount != 3 * points + 6 * faces)
-        throw std::runtime_error("fluid-app sent " + std::to_string(m.valueCount) +
-                                 " interface geometry values, expected " +
-                                 std::to_string(3 * points + 6 * faces) + " (3 points + 6 faces)");
+    const auto geometry = comm::protocol::decodeGeometry(
+        channel_.receive(comm::MessageKind::InterfaceGeometry), sizes[0], sizes[1]);
     if (channel_.isRoot())
     {
-        interface_.points = rows(m.values, 0, points);
-        interface_.faceCentres = rows(m.values, 3 * points, faces);
-        interface_.faceAreas = rows(m.values, 3 * (points + faces), faces);
+        interface_.points = rows<mapping::PointCloud>(geometry.points);
+        interface_.faceCentres = rows<mapping::PointCloud>(geometry.faceCentres);
+        interface_.faceAreas = rows<mapping::PointCloud>(geometry.faceAreas);
     }
 }
 
@@ -43,51 +39,36 @@ FluidResponse CommFluidPeer::solve(int level, int iteration, double time,
                                    const mapping::Values& pointDisplacement,
                                    const FluidAccuracy& accuracy)
 {
-    comm::Message command;
-    command.kind = comm::MessageKind::Solve;
-    command.timeStep = level;
+    comm::protocol::Solve command;
+    command.level = level;
     command.iteration = iteration;
-    command.scalars = {time};
-    if (accuracy.driverControlled)
-    {
-        command.scalars.push_back(accuracy.forceTolerance);
-        command.scalars.push_back(accuracy.residualDrop);
-        command.integers = {accuracy.minIterations};
-    }
+    command.time = time;
+    command.accuracyGiven = accuracy.driverControlled;
+    command.forceTolerance = accuracy.forceTolerance;
+    command.residualDrop = accuracy.residualDrop;
+    command.minIterations = accuracy.minIterations;
     if (channel_.isRoot())
     {
-        command.values.resize(3 * pointDisplacement.rows());
-        for (Eigen::Index i = 0; i < pointDisplacement.rows(); ++i)
-            for (int k = 0; k < 3; ++k)
-                command.values[3 * i + k] = pointDisplacement(i, k);
+        command.displacements.resize(3 * pointDisplacement.rows());
+        Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(
+            command.displacements.data(), pointDisplacement.rows(), 3) = pointDisplacement;
     }
-    channel_.send(command);
-    auto answer = channel_.receive(comm::MessageKind::Forces);
-    if (answer.timeStep != level || answer.iteration != iteration)
-        throw std::runtime_error("fluid-app answered level " + std::to_string(answer.timeStep) +
-                                 " iteration " + std::to_string(answer.iteration) + " to level " +
-                                 std::to_string(level) + " iteration " + std::to_string(iteration));
-    const Eigen::Index faces = channel_.peer().interfaceSizes[1];
-    if (answer.valueCount != 3 * faces)
-        throw std::runtime_error("fluid-app sent " + std::to_string(answer.valueCount) +
-                                 " force values, expected " + std::to_string(3 * faces));
+    channel_.send(comm::protocol::encode(command));
+    const auto answer = comm::protocol::decodeForces(
+        channel_.receive(comm::MessageKind::Forces), level, iteration, channel_.peer().interfaceSizes[1]);
     FluidResponse r;
     if (channel_.isRoot())
-        r.faceForces = rows(answer.values, 0, faces);
-    r.iterations = answer.integers.empty() ? 0 : static_cast<int>(answer.integers[0]);
-    r.converged = answer.integers.size() < 2 || answer.integers[1] != 0;
-    if (!answer.scalars.empty())
-        r.finalResidual = *std::max_element(answer.scalars.begin(), answer.scalars.end());
+        r.faceForces = rows<mapping::Values>(answer.faceForces);
+    r.iterations = static_cast<int>(answer.iterations);
+    r.converged = answer.converged;
+    if (!answer.residuals.empty())
+        r.finalResidual = *std::max_element(answer.residuals.begin(), answer.residuals.end());
     return r;
 }
 
 void CommFluidPeer::accept(int level, double time)
 {
-    comm::Message m;
-    m.kind = comm::MessageKind::Accept;
-    m.timeStep = level;
-    m.scalars = {time};
-    channel_.send(m);
+    channel_.send(comm::protocol::encode(comm::protocol::Accept{level, time}));
 }
 
 void CommFluidPeer::finish()

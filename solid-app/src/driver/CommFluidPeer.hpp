@@ -1,17 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// The fluid peer over fsi::comm: the solid side of the wire protocol spoken by fluid-app.
-//   Hello (in Channel::open): fluid interfaceSizes = {points, faces}
-//   InterfaceGeometry  fluid -> solid  values = points (3 P), face centres (3 F), area vectors (3 F)
-//   Solve              solid -> fluid  values = point displacements (3 P) [m]; step = level,
-//                                      iteration; scalars = {time [s]} (the fluid's own
-//                                      accuracy) or {time, force tolerance, residual drop}
-//                                      with integers = {min SIMPLE iterations} (FluidAccuracy)
-//   Forces             fluid -> solid  values = face forces (3 F) [N]; integers = {SIMPLE
-//                                      iterations[, converged 0/1]}; scalars = final residuals
-//   Accept             solid -> fluid  step = level; scalars = {time [s]}
-//   Finish / Abort(reason)
-// All arrays are flat xyz per entity, in the fluid's global ordering.
+// The fluid peer over fsi::comm: the solid side of the coupling protocol spoken by fluid-app.
+// The messages and their payloads are laid out in one place, fsi/comm/Protocol.hpp (shared with
+// fluid-app); this class converts the wire's n x 3 row-major arrays to the driver's n x 3
+// matrices (same layout) at the boundary.
 #pragma once
 
 #include "driver/FluidPeer.hpp"

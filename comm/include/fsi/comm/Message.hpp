@@ -19,17 +19,12 @@ constexpr std::int64_t kMessageMagic = 0x43495346;
 
 // What a message carries. Payload parts: values (bulk doubles, e.g. interface arrays),
 // scalars (a few doubles), integers (a few int64), text.
-//  Hello             handshake (Channel does it): integers = [role, ranks, interface sizes...],
-//                    text = program name
-//  HelloReply        handshake verdict: integers = [accepted 0|1], text = reason if rejected
-//  InterfaceGeometry values = coordinates or face data [m, m^2], layout agreed by the programs
-//  Solve             driver -> fluid: values = interface displacements [m], scalars = [time,
-//                    (force tolerance, residual drop)], integers = [(min SIMPLE iterations)]
-//  Forces            fluid -> driver: values = per-face forces [N], integers = [fluid
-//                    iterations, accuracy met 0|1], scalars = final fluid residuals
-//  Accept            driver -> fluid: time level converged, write output
-//  Finish            driver -> fluid: end of run, no payload
-//  Abort             either way: text = reason; the receiver throws PeerAbortError
+//  Hello, HelloReply  the handshake (Channel does it): integers = [role, ranks, interface
+//                     sizes...], text = program name; verdict [accepted 0|1], text = reason
+//  Abort              either way: text = reason; the receiver throws PeerAbortError
+//  InterfaceGeometry, Solve, Forces, Accept, Finish: the coupling protocol; their payloads are
+//                     laid out in fsi/comm/Protocol.hpp (the one description, used by both
+//                     programs)
 enum class MessageKind : std::int32_t
 {
     Hello = 1,
