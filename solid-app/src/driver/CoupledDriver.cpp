@@ -26,13 +26,15 @@ double secondsSince(Clock::time_point t0)
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
+// The interface representation: n x 3, row-major (x, y, z per node or face). The solid's flat
+// vectors, the accelerator's 3n vectors, the wire's arrays and mapping::PointCloud share that
+// layout, so these are views, not conversions.
+using NodeRows = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>;
+using MutableNodeRows = Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>;
+
 mapping::PointCloud toCloud(const std::vector<double>& xyz)
 {
-    mapping::PointCloud c(static_cast<Eigen::Index>(xyz.size() / 3), 3);
-    for (Eigen::Index i = 0; i < c.rows(); ++i)
-        for (int k = 0; k < 3; ++k)
-            c(i, k) = xyz[3 * i + k];
-    return c;
+    return NodeRows(xyz.data(), static_cast<Eigen::Index>(xyz.size() / 3), 3);
 }
 
 Eigen::VectorXd toVector(const std::vector<double>& v)
@@ -392,7 +394,6 @@ LevelAttempt CoupledDriver::Impl::attemptLevel(LevelRecord& record, bool usePred
 FluidResponse CoupledDriver::Impl::solveFluid(const LevelRecord& record, int iteration,
                                               const FluidAccuracy& accuracy, IterationLine& line)
 {
-    using NodeRows = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>;
     auto t0 = Clock::now();
     if (rank == 0)
     {
@@ -407,9 +408,7 @@ FluidResponse CoupledDriver::Impl::solveFluid(const LevelRecord& record, int ite
     {
         t0 = Clock::now();
         forceMap->applyConservative(response.faceForces, nodalForceRows);
-        for (int i = 0; i < n / 3; ++i)
-            for (int k = 0; k < 3; ++k)
-                nodalForce[3 * i + k] = nodalForceRows(i, k);
+        MutableNodeRows(nodalForce.data(), n / 3, 3) = nodalForceRows;
         line.wallMapping += secondsSince(t0);
         line.fluidIterations = response.iterations;
         line.fluidResidual = response.finalResidual;
