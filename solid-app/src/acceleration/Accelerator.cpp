@@ -75,7 +75,7 @@ void AitkenParameters::validate() const
                                  "; lower it or raise max_relaxation");
 }
 
-void IqnIlsParameters::validate() const
+void QuasiNewtonParameters::validate() const
 {
     checkInitialRelaxation(initialRelaxation, "initial_relaxation");
     if (maxColumns < 1)

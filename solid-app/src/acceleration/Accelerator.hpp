@@ -88,8 +88,9 @@ struct AitkenParameters
     void validate() const;
 };
 
-// iqn-ils: interface quasi-Newton with least-squares model (Degroote et al. 2009).
-struct IqnIlsParameters
+// What every quasi-Newton method shares (QuasiNewton.hpp): the secant columns, their cap and
+// reuse over levels, the QR filter and the relaxation of a level's first update.
+struct QuasiNewtonParameters
 {
     double initialRelaxation = std::numeric_limits<double>::quiet_NaN(); // omega_0, required
     int maxColumns = 100;             // cap on columns (current + reused), oldest dropped first
@@ -97,6 +98,11 @@ struct IqnIlsParameters
     double filterTolerance = 1e-3;    // QR filter epsilon, see QrFilter.hpp
     std::string filter = "qr-column"; // "qr-column" (|R_ii| < eps |v_i|) | "qr-matrix" (eps ||R||)
     void validate() const;
+};
+
+// iqn-ils: interface quasi-Newton with least-squares model (Degroote et al. 2009).
+struct IqnIlsParameters : QuasiNewtonParameters
+{
 };
 
 struct AcceleratorParameters
