@@ -4,9 +4,12 @@
 
 #include "acceleration/Aitken.hpp"
 #include "acceleration/ConstantRelaxation.hpp"
+#include "acceleration/IqnIls.hpp"
+#include "acceleration/Registry.hpp"
 
 #include <gtest/gtest.h>
 
+#include <map>
 #include <stdexcept>
 
 using namespace fsi::acceleration;
@@ -169,40 +172,61 @@ TEST(Aitken, RestartStateGivesTheSameIterates)
 
 TEST(AcceleratorParameters, RejectsBadInputWithOneLineMessages)
 {
-    AcceleratorParameters p;
-    p.type = "broyden";
-    EXPECT_EQ(validationMessage(p),
-              "acceleration.type 'broyden' is unknown; use one of constant, aitken, iqn-ils");
-    p.type = "aitken";
+    try
+    {
+        acceleratorType("broyden");
+        FAIL() << "an unknown type was accepted";
+    }
+    catch (const std::runtime_error& e)
+    {
+        EXPECT_EQ(std::string(e.what()),
+                  "acceleration.type 'broyden' is unknown; use one of constant, aitken, iqn-ils");
+    }
+    AitkenParameters aitken;
+    AcceleratorParameters p = aitken;
+    EXPECT_EQ(p.type(), "aitken");
     EXPECT_EQ(validationMessage(p), "acceleration.initial_relaxation must be in (0, 1] (got "
                                     "unset); set it, e.g. 0.5, smaller for strong coupling");
-    p.aitken.initialRelaxation = 0.5;
-    p.aitken.initial = "keep";
+    p.get<AitkenParameters>()->initialRelaxation = 0.5;
+    p.get<AitkenParameters>()->initial = "keep";
     EXPECT_EQ(validationMessage(p),
               "acceleration.initial 'keep' is unknown; use reset or carry-over");
-    p.aitken.initial = "reset";
+    p.get<AitkenParameters>()->initial = "reset";
     EXPECT_EQ(validationMessage(p), "");
-    p.type = "iqn-ils";
-    p.iqnIls.initialRelaxation = 0.1;
-    p.iqnIls.reuseLevels = -1;
+    EXPECT_EQ(p.get<IqnIlsParameters>(), nullptr);
+    IqnIlsParameters iqn;
+    iqn.initialRelaxation = 0.1;
+    iqn.reuseLevels = -1;
+    p = iqn;
     EXPECT_NE(validationMessage(p).find("acceleration.reuse_levels must be >= 0"),
               std::string::npos);
-    p.type = "constant";
+    ConstantParameters constant;
+    p = constant;
     EXPECT_NE(validationMessage(p).find("acceleration.relaxation must be in (0, 2)"),
               std::string::npos);
-    p.constant.relaxation = 0.7;
+    p.get<ConstantParameters>()->relaxation = 0.7;
     EXPECT_EQ(makeAccelerator(p)->name(), "constant");
+    EXPECT_EQ(validationMessage(AcceleratorParameters()),
+              "acceleration.type is not set; use one of constant, aitken, iqn-ils");
+}
+
+TEST(AcceleratorParameters, CopiesDoNotShareCoefficients)
+{
+    AcceleratorParameters a = aitkenParameters(0.5);
+    AcceleratorParameters b = a;
+    b.get<AitkenParameters>()->initialRelaxation = 0.25;
+    EXPECT_EQ(a.get<AitkenParameters>()->initialRelaxation, 0.5);
+    EXPECT_EQ(b.get<AitkenParameters>()->initialRelaxation, 0.25);
 }
 
 TEST(AcceleratorSizes, AChangedInterfaceWithinALevelIsRefused)
 {
-    AcceleratorParameters p;
-    p.type = "iqn-ils";
-    p.iqnIls.initialRelaxation = 0.5;
-    for (const char* type : {"aitken", "iqn-ils"})
+    IqnIlsParameters iqn;
+    iqn.initialRelaxation = 0.5;
+    const std::map<std::string, AcceleratorParameters> strategies{{"aitken", aitkenParameters(0.5)},
+                                                                  {"iqn-ils", iqn}};
+    for (const auto& [type, p] : strategies)
     {
-        p.type = type;
-        p.aitken.initialRelaxation = 0.5;
         const auto accelerator = makeAccelerator(p);
         accelerator->beginLevel();
         accelerator->update(Eigen::VectorXd::Zero(3), Eigen::VectorXd::Ones(3));

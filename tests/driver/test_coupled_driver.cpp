@@ -3,6 +3,9 @@
 // whose coupled fixed point is known in closed form (SpringBackFluid.hpp). Runs on 1 rank
 // (unit) and 2 ranks (mpi): the solid is distributed, the fluid double lives on rank 0.
 #include "SpringBackFluid.hpp"
+#include "acceleration/Aitken.hpp"
+#include "acceleration/ConstantRelaxation.hpp"
+#include "acceleration/IqnIls.hpp"
 #include "driver/CoupledDriver.hpp"
 #include "driver/RecoveryPolicy.hpp"
 #include "driver/TimeSchedule.hpp"
@@ -91,10 +94,24 @@ driver::CouplingParameters couplingWith(const std::string& accelerator, double o
     driver::CouplingParameters p;
     p.maxIterations = 60;
     p.convergence.absoluteTolerance = 1e-13; // [m]; the tip moves ~1e-3 m
-    p.acceleration.type = accelerator;
-    p.acceleration.constant.relaxation = omega;
-    p.acceleration.aitken.initialRelaxation = omega;
-    p.acceleration.iqnIls.initialRelaxation = omega;
+    if (accelerator == "constant")
+    {
+        acceleration::ConstantParameters c;
+        c.relaxation = omega;
+        p.acceleration = c;
+    }
+    else if (accelerator == "aitken")
+    {
+        acceleration::AitkenParameters a;
+        a.initialRelaxation = omega;
+        p.acceleration = a;
+    }
+    else
+    {
+        acceleration::IqnIlsParameters q;
+        q.initialRelaxation = omega;
+        p.acceleration = q;
+    }
     p.mapping.type = "nearest-neighbour";
     return p;
 }
@@ -319,7 +336,7 @@ TEST(CoupledDriver, RestartReproducesTheUninterruptedRun)
     const auto visco = viscoelastic({0.6, 0.4}, {0.3, 3.0});
     const double kappa = 1.2 / meanTipResponse(elastic(K, G), F0);
     auto coupling = couplingWith("iqn-ils", 0.5);
-    coupling.acceleration.iqnIls.reuseLevels = 2;
+    coupling.acceleration.get<acceleration::IqnIlsParameters>()->reuseLevels = 2;
     coupling.convergence.absoluteTolerance = 1e-11;
     coupling.time.type = "list";
     coupling.time.times = {0.0, 0.1, 0.4, 1.0, 3.0, 10.0};

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The `coupling` block: the shipped example parses; bad input gives one-line errors naming
 // the file and the key.
+#include "acceleration/Aitken.hpp"
+#include "acceleration/Registry.hpp"
 #include "config/YamlReader.hpp"
 #include "driver/CouplingParameters.hpp"
 
@@ -8,6 +10,9 @@
 
 #include <cstdio>
 #include <fstream>
+#include <map>
+#include <regex>
+#include <set>
 
 using namespace fsi;
 
@@ -52,8 +57,8 @@ TEST(CouplingParameters, ShippedExampleParses)
 {
     const auto p = driver::CouplingParameters::parse(
         config::Block::load(FSI_SOURCE_DIR "/config/coupled.example.yaml").block("coupling"));
-    EXPECT_EQ(p.acceleration.type, "aitken");
-    EXPECT_DOUBLE_EQ(p.acceleration.aitken.initialRelaxation, 0.5);
+    EXPECT_EQ(p.acceleration.type(), "aitken");
+    EXPECT_DOUBLE_EQ(p.acceleration.get<acceleration::AitkenParameters>()->initialRelaxation, 0.5);
     EXPECT_EQ(p.mapping.type, "rbf-wendland-c2");
     EXPECT_DOUBLE_EQ(p.mapping.wendland.supportRadius, 0.004);
     EXPECT_EQ(p.time.type, "adaptive");
@@ -157,4 +162,66 @@ TEST(CouplingParameters, StrategyErrorsNameTheirBlockAndKeepSmallValues)
     EXPECT_NE(errorOf(minimal + "  launch: {timeout: 1.0e10}\n").find("coupling.launch.timeout"),
               std::string::npos);
     EXPECT_NO_THROW(parseText(minimal + "  launch: {timeout: 1.0e9}\n"));
+}
+
+namespace
+{
+// The keys documented for each strategy block in config/coupled.example.yaml's `section`
+// (e.g. "acceleration"): the selected strategy's block and the commented-out alternatives
+// ("# iqn-ils:" followed by "#   key: value" lines).
+std::map<std::string, std::set<std::string>> documentedKeys(const std::string& section,
+                                                            const std::vector<std::string>& names)
+{
+    std::ifstream in(FSI_SOURCE_DIR "/config/coupled.example.yaml");
+    const std::regex start("^  " + section + ":.*"), end("^  [a-z_]+:.*");
+    const std::regex keyLine("^( *)([a-z0-9_-]+):.*");
+    std::map<std::string, std::set<std::string>> keys;
+    bool inside = false;
+    std::string current;
+    std::size_t currentIndent = 0;
+    for (std::string line; std::getline(in, line);)
+    {
+        if (!inside)
+        {
+            inside = std::regex_match(line, start);
+            continue;
+        }
+        if (std::regex_match(line, end))
+            break;
+        // uncomment "    #   key:" -> "        key:" (the column of the key is kept)
+        line = std::regex_replace(line, std::regex("^( *)# "), "$1  ");
+        std::smatch m;
+        if (!std::regex_match(line, m, keyLine))
+            continue;
+        const std::size_t indent = m[1].length();
+        if (std::find(names.begin(), names.end(), m[2].str()) != names.end())
+        {
+            current = m[2];
+            currentIndent = indent;
+            keys[current];
+        }
+        else if (!current.empty() && indent > currentIndent)
+            keys[current].insert(m[2]);
+        else
+            current.clear();
+    }
+    return keys;
+}
+} // namespace
+
+// Every registered accelerator is documented in the shipped example with exactly its keys.
+TEST(CouplingParameters, DocumentedAcceleratorKeysMatchTheRegistry)
+{
+    std::vector<std::string> names;
+    for (const auto& t : acceleration::acceleratorTypes())
+        names.push_back(t.name);
+    const auto documented = documentedKeys("acceleration", names);
+    for (const auto& t : acceleration::acceleratorTypes())
+    {
+        ASSERT_EQ(documented.count(t.name), 1u)
+            << t.name << " is registered but not documented in config/coupled.example.yaml";
+        EXPECT_EQ(documented.at(t.name), std::set<std::string>(t.keys.begin(), t.keys.end()))
+            << "keys of acceleration." << t.name;
+    }
+    EXPECT_EQ(documented.size(), names.size());
 }

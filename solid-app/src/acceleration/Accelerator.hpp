@@ -3,7 +3,7 @@
 // Fixed-point acceleration of the interface displacement within one time level (after preCICE
 // acceleration::Acceleration). Vectors only: no MPI, no FE, no YAML. The driver calls
 //   beginLevel(); loop { u = accelerator.update(u, solve(u)); test convergence } endLevel();
-// Strategies by keyword (AcceleratorParameters::type): "constant", "aitken", "iqn-ils".
+// Strategies by keyword (AcceleratorParameters::type), registered in Registry.hpp.
 #pragma once
 
 #include <Eigen/Core>
@@ -12,6 +12,11 @@
 #include <memory>
 #include <string>
 #include <vector>
+
+namespace fsi::config
+{
+class Block;
+}
 
 namespace fsi::acceleration
 {
@@ -71,50 +76,75 @@ protected:
     std::string note_;
 };
 
-// constant: u_i = u_{i-1} + omega r_i.
-struct ConstantParameters
+// The parsed coefficients of the chosen strategy, type-erased. A strategy's parameter struct P
+// provides (see Aitken.hpp for an example):
+//   static constexpr const char* keyword;         // acceleration.type and its coefficient block
+//   using Strategy = <the Accelerator class>;     // constructed from P
+//   static const std::vector<std::string>& keys(); // the coefficient keys, as documented
+//   static P parse(const config::Block& block);   // reads the block (defaults for absent keys)
+//   void validate() const;                        // std::runtime_error naming acceleration.<key>
+//   std::string echo() const;                     // "{key: value, ...}" for the start-up echo
+// and registers itself in Registry.cpp with one line.
+class AcceleratorParameters
 {
-    double relaxation = std::numeric_limits<double>::quiet_NaN(); // omega, required, (0, 2)
-    void validate() const;
-};
+public:
+    AcceleratorParameters() = default; // no strategy chosen: validate() and make() throw
+    template <class P>
+    AcceleratorParameters(const P& params) // NOLINT: implicit by design
+        : type_(P::keyword), model_(std::make_shared<Holder<P>>(params))
+    {
+    }
 
-// aitken: eq. 10 of the paper, see Aitken.hpp.
-struct AitkenParameters
-{
-    double initialRelaxation = std::numeric_limits<double>::quiet_NaN(); // omega_0, required
-    std::string initial = "reset"; // first iteration of a level: "reset" | "carry-over"
-    double maxRelaxation = 1.0;    // |omega| <= max_relaxation
-    double minRelaxation = 1e-3;   // |omega| >= min_relaxation; carry-over into [min, max]
-    void validate() const;
-};
-
-// What every quasi-Newton method shares (QuasiNewton.hpp): the secant columns, their cap and
-// reuse over levels, the QR filter and the relaxation of a level's first update.
-struct QuasiNewtonParameters
-{
-    double initialRelaxation = std::numeric_limits<double>::quiet_NaN(); // omega_0, required
-    int maxColumns = 100;             // cap on columns (current + reused), oldest dropped first
-    int reuseLevels = 0;              // converged levels whose columns are reused (0 = none)
-    double filterTolerance = 1e-3;    // QR filter epsilon, see QrFilter.hpp
-    std::string filter = "qr-column"; // "qr-column" (|R_ii| < eps |v_i|) | "qr-matrix" (eps ||R||)
-    void validate() const;
-};
-
-// iqn-ils: interface quasi-Newton with least-squares model (Degroote et al. 2009).
-struct IqnIlsParameters : QuasiNewtonParameters
-{
-};
-
-struct AcceleratorParameters
-{
-    std::string type = "aitken"; // "constant" | "aitken" | "iqn-ils"
-    ConstantParameters constant;
-    AitkenParameters aitken;
-    IqnIlsParameters iqnIls;
+    const std::string& type() const { return type_; }
     // Throws std::runtime_error, one line naming the key (acceleration.<key>) and the fix.
     void validate() const;
+    std::unique_ptr<Accelerator> make() const; // validates first
+    std::string echo() const;                  // the coefficients, "{key: value, ...}"
+
+    // The coefficients of strategy P, nullptr when another strategy was chosen. Copies of this
+    // object do not share them.
+    template <class P> P* get()
+    {
+        auto* holder = dynamic_cast<Holder<P>*>(model_.get());
+        if (!holder)
+            return nullptr;
+        if (model_.use_count() > 1) // copy on write
+        {
+            model_ = std::make_shared<Holder<P>>(holder->params);
+            holder = static_cast<Holder<P>*>(model_.get());
+        }
+        return &holder->params;
+    }
+    template <class P> const P* get() const
+    {
+        const auto* holder = dynamic_cast<const Holder<P>*>(model_.get());
+        return holder ? &holder->params : nullptr;
+    }
+
+private:
+    struct Model
+    {
+        virtual ~Model() = default;
+        virtual void validate() const = 0;
+        virtual std::unique_ptr<Accelerator> make() const = 0;
+        virtual std::string echo() const = 0;
+    };
+    template <class P> struct Holder final : Model
+    {
+        explicit Holder(const P& p) : params(p) {}
+        void validate() const override { params.validate(); }
+        std::unique_ptr<Accelerator> make() const override
+        {
+            return std::make_unique<typename P::Strategy>(params);
+        }
+        std::string echo() const override { return params.echo(); }
+        P params;
+    };
+    std::string type_;
+    std::shared_ptr<Model> model_;
 };
 
+// params.make().
 std::unique_ptr<Accelerator> makeAccelerator(const AcceleratorParameters& params);
 
 } // namespace fsi::acceleration

@@ -2,14 +2,62 @@
 #include "acceleration/Aitken.hpp"
 
 #include "acceleration/NumberText.hpp"
+#include "acceleration/ParameterChecks.hpp"
+#include "config/YamlReader.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <sstream>
 #include <stdexcept>
 
 namespace fsi::acceleration
 {
+
+const std::vector<std::string>& AitkenParameters::keys()
+{
+    static const std::vector<std::string> k{"initial_relaxation", "initial", "max_relaxation",
+                                            "min_relaxation"};
+    return k;
+}
+
+AitkenParameters AitkenParameters::parse(const config::Block& b)
+{
+    b.allowOnly(keys());
+    AitkenParameters p;
+    p.initialRelaxation = b.number("initial_relaxation");
+    p.initial = b.choice("initial", {"reset", "carry-over"}, "reset");
+    p.maxRelaxation = b.number("max_relaxation", p.maxRelaxation);
+    p.minRelaxation = b.number("min_relaxation", p.minRelaxation);
+    return p;
+}
+
+void AitkenParameters::validate() const
+{
+    checkInitialRelaxation(initialRelaxation, "initial_relaxation");
+    if (initial != "reset" && initial != "carry-over")
+        throw std::runtime_error("acceleration.initial '" + initial +
+                                 "' is unknown; use reset or carry-over");
+    if (!(maxRelaxation > 0.0) || !std::isfinite(maxRelaxation))
+        throw std::runtime_error("acceleration.max_relaxation must be > 0 (got " +
+                                 valueText(maxRelaxation) + "); e.g. 1");
+    if (!(minRelaxation > 0.0 && minRelaxation <= maxRelaxation))
+        throw std::runtime_error("acceleration.min_relaxation must be in (0, max_relaxation] "
+                                 "(got " +
+                                 valueText(minRelaxation) + "); e.g. 1e-3");
+    if (initialRelaxation > maxRelaxation)
+        throw std::runtime_error("acceleration.initial_relaxation " + valueText(initialRelaxation) +
+                                 " exceeds max_relaxation " + valueText(maxRelaxation) +
+                                 "; lower it or raise max_relaxation");
+}
+
+std::string AitkenParameters::echo() const
+{
+    std::ostringstream s;
+    s << "{initial_relaxation: " << initialRelaxation << ", initial: " << initial
+      << ", max_relaxation: " << maxRelaxation << ", min_relaxation: " << minRelaxation << "}";
+    return s.str();
+}
 
 Aitken::Aitken(const AitkenParameters& params)
     : params_(params), carryOver_(params.initial == "carry-over")

@@ -17,6 +17,25 @@
 namespace fsi::acceleration
 {
 
+class Aitken;
+
+// Block `aitken: {initial_relaxation: 0.5, initial: reset, max_relaxation: 1, min_relaxation:
+// 1e-3}`.
+struct AitkenParameters
+{
+    static constexpr const char* keyword = "aitken";
+    using Strategy = Aitken;
+    double initialRelaxation = std::numeric_limits<double>::quiet_NaN(); // omega_0, required
+    std::string initial = "reset"; // first iteration of a level: "reset" | "carry-over"
+    double maxRelaxation = 1.0;    // |omega| <= max_relaxation
+    double minRelaxation = 1e-3;   // |omega| >= min_relaxation; carry-over into [min, max]
+
+    static const std::vector<std::string>& keys();
+    static AitkenParameters parse(const config::Block& b);
+    void validate() const;
+    std::string echo() const;
+};
+
 class Aitken final : public Accelerator
 {
 public:

@@ -7,6 +7,21 @@
 namespace fsi::acceleration
 {
 
+class ConstantRelaxation;
+
+// constant: u_i = u_{i-1} + omega r_i. Block `constant: {relaxation: 0.3}`.
+struct ConstantParameters
+{
+    static constexpr const char* keyword = "constant";
+    using Strategy = ConstantRelaxation;
+    double relaxation = std::numeric_limits<double>::quiet_NaN(); // omega, required, (0, 2)
+
+    static const std::vector<std::string>& keys();
+    static ConstantParameters parse(const config::Block& b);
+    void validate() const;
+    std::string echo() const;
+};
+
 class ConstantRelaxation final : public Accelerator
 {
 public:

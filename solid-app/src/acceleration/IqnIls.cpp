@@ -1,8 +1,18 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "acceleration/IqnIls.hpp"
 
+#include "config/YamlReader.hpp"
+
 namespace fsi::acceleration
 {
+
+IqnIlsParameters IqnIlsParameters::parse(const config::Block& b)
+{
+    b.allowOnly(keys());
+    IqnIlsParameters p;
+    p.parseCommon(b);
+    return p;
+}
 
 IqnIls::IqnIls(const IqnIlsParameters& params) : QuasiNewton(params) {}
 

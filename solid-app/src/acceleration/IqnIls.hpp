@@ -12,6 +12,19 @@
 namespace fsi::acceleration
 {
 
+class IqnIls;
+
+// Block `iqn-ils: {initial_relaxation: 0.3, max_columns: 100, reuse_levels: 8, filter:
+// qr-column, filter_tolerance: 1e-3}` (the quasi-Newton keys, nothing of its own).
+struct IqnIlsParameters : QuasiNewtonParameters
+{
+    static constexpr const char* keyword = "iqn-ils";
+    using Strategy = IqnIls;
+    static const std::vector<std::string>& keys() { return commonKeys(); }
+    static IqnIlsParameters parse(const config::Block& b);
+    std::string echo() const { return "{" + echoCommon() + "}"; }
+};
+
 class IqnIls final : public QuasiNewton
 {
 public:

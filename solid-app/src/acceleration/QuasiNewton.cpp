@@ -1,10 +1,57 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "acceleration/QuasiNewton.hpp"
 
+#include "acceleration/ParameterChecks.hpp"
+#include "config/YamlReader.hpp"
+
+#include <sstream>
+
 #include <stdexcept>
 
 namespace fsi::acceleration
 {
+
+const std::vector<std::string>& QuasiNewtonParameters::commonKeys()
+{
+    static const std::vector<std::string> k{"initial_relaxation", "max_columns", "reuse_levels",
+                                            "filter", "filter_tolerance"};
+    return k;
+}
+
+void QuasiNewtonParameters::parseCommon(const config::Block& b)
+{
+    initialRelaxation = b.number("initial_relaxation");
+    maxColumns = b.integer("max_columns", maxColumns);
+    reuseLevels = b.integer("reuse_levels", reuseLevels);
+    filter = b.choice("filter", {"qr-column", "qr-matrix"}, filter);
+    filterTolerance = b.number("filter_tolerance", filterTolerance);
+}
+
+std::string QuasiNewtonParameters::echoCommon() const
+{
+    std::ostringstream s;
+    s << "initial_relaxation: " << initialRelaxation << ", max_columns: " << maxColumns
+      << ", reuse_levels: " << reuseLevels << ", filter: " << filter
+      << ", filter_tolerance: " << filterTolerance;
+    return s.str();
+}
+
+void QuasiNewtonParameters::validate() const
+{
+    checkInitialRelaxation(initialRelaxation, "initial_relaxation");
+    if (maxColumns < 1)
+        throw std::runtime_error("acceleration.max_columns must be >= 1 (got " +
+                                 std::to_string(maxColumns) + "); e.g. 100");
+    if (reuseLevels < 0)
+        throw std::runtime_error("acceleration.reuse_levels must be >= 0 (got " +
+                                 std::to_string(reuseLevels) + "); 0 switches reuse off");
+    if (!(filterTolerance >= 0.0 && filterTolerance < 1.0))
+        throw std::runtime_error("acceleration.filter_tolerance must be in [0, 1) (got " +
+                                 valueText(filterTolerance) + "); e.g. 1e-3");
+    if (filter != "qr-column" && filter != "qr-matrix")
+        throw std::runtime_error("acceleration.filter '" + filter +
+                                 "' is unknown; use qr-column or qr-matrix");
+}
 
 QuasiNewton::QuasiNewton(const QuasiNewtonParameters& params)
     : params_(params),

@@ -20,6 +20,23 @@
 namespace fsi::acceleration
 {
 
+// What every quasi-Newton method shares: the secant columns, their cap and reuse over levels,
+// the QR filter and the relaxation of a level's first update.
+struct QuasiNewtonParameters
+{
+    double initialRelaxation = std::numeric_limits<double>::quiet_NaN(); // omega_0, required
+    int maxColumns = 100;             // cap on columns (current + reused), oldest dropped first
+    int reuseLevels = 0;              // converged levels whose columns are reused (0 = none)
+    double filterTolerance = 1e-3;    // QR filter epsilon, see QrFilter.hpp
+    std::string filter = "qr-column"; // "qr-column" (|R_ii| < eps |v_i|) | "qr-matrix" (eps ||R||)
+
+    // The keys above, for a method's keys() / parse() / echo() (a method may add its own).
+    static const std::vector<std::string>& commonKeys();
+    void parseCommon(const config::Block& b);
+    std::string echoCommon() const; // "initial_relaxation: ..., filter_tolerance: ..."
+    void validate() const;
+};
+
 class QuasiNewton : public Accelerator
 {
 public:

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "driver/CouplingParameters.hpp"
 
+#include "acceleration/Registry.hpp"
 #include "config/YamlReader.hpp"
 
 #include <cmath>
@@ -37,39 +38,20 @@ void validateIn(const Parameters& p, const config::Block& b, const std::string& 
     }
 }
 
+// acceleration: {type: NAME, NAME: {coefficients}}; the strategies and their keys come from
+// the acceleration layer's registry.
 acceleration::AcceleratorParameters parseAcceleration(const config::Block& b)
 {
-    const std::vector<std::string> types{"constant", "aitken", "iqn-ils"};
-    b.allowOnly({"type", "constant", "aitken", "iqn-ils"});
-    acceleration::AcceleratorParameters p;
-    p.type = b.choice("type", types);
-    onlySelectedCoefficients(b, p.type, types);
-    if (p.type == "constant")
-    {
-        auto c = b.block("constant");
-        c.allowOnly({"relaxation"});
-        p.constant.relaxation = c.number("relaxation");
-    }
-    else if (p.type == "aitken")
-    {
-        auto c = b.block("aitken");
-        c.allowOnly({"initial_relaxation", "initial", "max_relaxation", "min_relaxation"});
-        p.aitken.initialRelaxation = c.number("initial_relaxation");
-        p.aitken.initial = c.choice("initial", {"reset", "carry-over"}, "reset");
-        p.aitken.maxRelaxation = c.number("max_relaxation", p.aitken.maxRelaxation);
-        p.aitken.minRelaxation = c.number("min_relaxation", p.aitken.minRelaxation);
-    }
-    else
-    {
-        auto c = b.block("iqn-ils");
-        c.allowOnly({"initial_relaxation", "max_columns", "reuse_levels", "filter",
-                     "filter_tolerance"});
-        p.iqnIls.initialRelaxation = c.number("initial_relaxation");
-        p.iqnIls.maxColumns = c.integer("max_columns", p.iqnIls.maxColumns);
-        p.iqnIls.reuseLevels = c.integer("reuse_levels", p.iqnIls.reuseLevels);
-        p.iqnIls.filter = c.choice("filter", {"qr-column", "qr-matrix"}, p.iqnIls.filter);
-        p.iqnIls.filterTolerance = c.number("filter_tolerance", p.iqnIls.filterTolerance);
-    }
+    std::vector<std::string> types;
+    for (const auto& t : acceleration::acceleratorTypes())
+        types.push_back(t.name);
+    std::vector<std::string> allowed{"type"};
+    allowed.insert(allowed.end(), types.begin(), types.end());
+    b.allowOnly(allowed);
+    const std::string type = b.choice("type", types);
+    onlySelectedCoefficients(b, type, types);
+    const acceleration::AcceleratorParameters p =
+        acceleration::acceleratorType(type).parse(b.block(type));
     validateIn(p, b, "type");
     return p;
 }
@@ -271,20 +253,8 @@ std::string CouplingParameters::echo() const
       << "  predictor: " << predictor << "\n"
       << "  convergence: {absolute_tolerance: " << convergence.absoluteTolerance
       << ", relative_tolerance: " << convergence.relativeTolerance << "}\n"
-      << "  acceleration:\n    type: " << acceleration.type << "\n";
-    if (acceleration.type == "constant")
-        s << "    constant: {relaxation: " << acceleration.constant.relaxation << "}\n";
-    else if (acceleration.type == "aitken")
-        s << "    aitken: {initial_relaxation: " << acceleration.aitken.initialRelaxation
-          << ", initial: " << acceleration.aitken.initial
-          << ", max_relaxation: " << acceleration.aitken.maxRelaxation
-          << ", min_relaxation: " << acceleration.aitken.minRelaxation << "}\n";
-    else
-        s << "    iqn-ils: {initial_relaxation: " << acceleration.iqnIls.initialRelaxation
-          << ", max_columns: " << acceleration.iqnIls.maxColumns
-          << ", reuse_levels: " << acceleration.iqnIls.reuseLevels
-          << ", filter: " << acceleration.iqnIls.filter
-          << ", filter_tolerance: " << acceleration.iqnIls.filterTolerance << "}\n";
+      << "  acceleration:\n    type: " << acceleration.type() << "\n"
+      << "    " << acceleration.type() << ": " << acceleration.echo() << "\n";
     s << "  mapping:\n    type: " << mapping.type << "\n    overlap_tolerance: "
       << mapping.overlapTolerance << "\n";
     if (mapping.type == "rbf-wendland-c2")
