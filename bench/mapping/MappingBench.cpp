@@ -28,6 +28,10 @@
 // peak_rss_mb (absolute), lin_err (the same error for a linear field: round-off for RBF kinds).
 // CPU seconds are the figures to compare on a shared machine; wall seconds show the load.
 #include "mapping/Mapping.hpp"
+#include "mapping/RbfPartitionOfUnity.hpp"
+#include "mapping/RbfThinPlate.hpp"
+#include "mapping/RbfWendlandC2.hpp"
+#include "mapping/Registry.hpp"
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -183,8 +187,9 @@ void runCase(const std::string& kind, long size, double wendlandRadius)
     Values mapped(t.rows(), 3), back(s.rows(), 3);
 
     MappingParameters params;
-    params.type = kind;
-    params.wendland.supportRadius = wendlandRadius > 0.0 ? wendlandRadius : 4.0 * h;
+    params.strategy = mappingType(kind).defaults();
+    if (auto* w = params.strategy.get<WendlandParameters>())
+        w->supportRadius = wendlandRadius > 0.0 ? wendlandRadius : 4.0 * h;
     const double rss0 = statusMiB("VmRSS");
     const bool peakReset = resetPeak();
     const double cpu0 = cpuSeconds(), wall0 = wallSeconds();

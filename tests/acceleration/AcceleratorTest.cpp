@@ -206,8 +206,7 @@ TEST(AcceleratorParameters, RejectsBadInputWithOneLineMessages)
               std::string::npos);
     p.get<ConstantParameters>()->relaxation = 0.7;
     EXPECT_EQ(makeAccelerator(p)->name(), "constant");
-    EXPECT_EQ(validationMessage(AcceleratorParameters()),
-              "acceleration.type is not set; use one of constant, aitken, iqn-ils");
+    EXPECT_EQ(validationMessage(AcceleratorParameters()), "acceleration.type is not set");
 }
 
 TEST(AcceleratorParameters, CopiesDoNotShareCoefficients)

@@ -9,6 +9,7 @@
 #include "driver/CoupledDriver.hpp"
 #include "driver/RecoveryPolicy.hpp"
 #include "driver/TimeSchedule.hpp"
+#include "mapping/NearestNeighbour.hpp"
 #include "material/Material.hpp"
 #include "material/MaterialParameters.hpp"
 #include "mesh/GmshTestMeshes.hpp"
@@ -112,7 +113,7 @@ driver::CouplingParameters couplingWith(const std::string& accelerator, double o
         q.initialRelaxation = omega;
         p.acceleration = q;
     }
-    p.mapping.type = "nearest-neighbour";
+    p.mapping = mapping::NearestNeighbourParameters{};
     return p;
 }
 

@@ -5,6 +5,9 @@
 #include "acceleration/Registry.hpp"
 #include "config/YamlReader.hpp"
 #include "driver/CouplingParameters.hpp"
+#include "mapping/RbfPartitionOfUnity.hpp"
+#include "mapping/RbfWendlandC2.hpp"
+#include "mapping/Registry.hpp"
 
 #include <gtest/gtest.h>
 
@@ -59,14 +62,14 @@ TEST(CouplingParameters, ShippedExampleParses)
         config::Block::load(FSI_SOURCE_DIR "/config/coupled.example.yaml").block("coupling"));
     EXPECT_EQ(p.acceleration.type(), "aitken");
     EXPECT_DOUBLE_EQ(p.acceleration.get<acceleration::AitkenParameters>()->initialRelaxation, 0.5);
-    EXPECT_EQ(p.mapping.type, "rbf-wendland-c2");
-    EXPECT_DOUBLE_EQ(p.mapping.wendland.supportRadius, 0.004);
+    EXPECT_EQ(p.mapping.type(), "rbf-wendland-c2");
+    EXPECT_DOUBLE_EQ(p.mapping.strategy.get<mapping::WendlandParameters>()->supportRadius, 0.004);
     EXPECT_EQ(p.time.type, "adaptive");
     EXPECT_DOUBLE_EQ(p.time.end, 3600.0);
     ASSERT_TRUE(p.sectionAngle.has_value());
     EXPECT_DOUBLE_EQ(p.sectionAngle->liftDirection[1], -1.0);
-    EXPECT_EQ(p.mapping.wendland.solver, "auto");
-    EXPECT_EQ(p.mapping.wendland.directMaxPoints, 20000);
+    EXPECT_EQ(p.mapping.strategy.get<mapping::WendlandParameters>()->solver, "auto");
+    EXPECT_EQ(p.mapping.strategy.get<mapping::WendlandParameters>()->directMaxPoints, 20000);
     EXPECT_NE(p.echo().find("rbf-wendland-c2: {support_radius: 0.004, solver: auto"), std::string::npos);
     EXPECT_EQ(p.checkpoint.every, 1);
     EXPECT_EQ(p.checkpoint.keep, 2);
@@ -120,16 +123,20 @@ TEST(CouplingParameters, PartitionOfUnityMappingParsesWithDefaultsAndNamesBadKey
     const std::string head = "  convergence: {absolute_tolerance: 1.0e-7}\n"
                              "  acceleration: {type: aitken, aitken: {initial_relaxation: 0.5}}\n";
     const auto defaults = parseText(head + "  mapping: {type: rbf-pu}\n");
-    EXPECT_EQ(defaults.mapping.type, "rbf-pu");
-    EXPECT_EQ(defaults.mapping.partitionOfUnity.pointsPerPatch, 20);
-    EXPECT_DOUBLE_EQ(defaults.mapping.partitionOfUnity.centreSpacing, 0.85);
+    EXPECT_EQ(defaults.mapping.type(), "rbf-pu");
+    EXPECT_EQ(defaults.mapping.strategy.get<mapping::PartitionOfUnityParameters>()->pointsPerPatch,
+              20);
+    EXPECT_DOUBLE_EQ(
+        defaults.mapping.strategy.get<mapping::PartitionOfUnityParameters>()->centreSpacing, 0.85);
     EXPECT_NE(defaults.echo().find("rbf-pu: {points_per_patch: 20, centre_spacing: 0.85}"),
               std::string::npos)
         << defaults.echo();
     const auto given = parseText(
         head + "  mapping: {type: rbf-pu, rbf-pu: {points_per_patch: 30, centre_spacing: 0.7}}\n");
-    EXPECT_EQ(given.mapping.partitionOfUnity.pointsPerPatch, 30);
-    EXPECT_DOUBLE_EQ(given.mapping.partitionOfUnity.centreSpacing, 0.7);
+    EXPECT_EQ(given.mapping.strategy.get<mapping::PartitionOfUnityParameters>()->pointsPerPatch,
+              30);
+    EXPECT_DOUBLE_EQ(
+        given.mapping.strategy.get<mapping::PartitionOfUnityParameters>()->centreSpacing, 0.7);
     const std::string few =
         errorOf(head + "  mapping: {type: rbf-pu, rbf-pu: {points_per_patch: 2}}\n");
     EXPECT_NE(few.find("coupling.mapping.rbf-pu"), std::string::npos) << few;
@@ -224,4 +231,26 @@ TEST(CouplingParameters, DocumentedAcceleratorKeysMatchTheRegistry)
             << "keys of acceleration." << t.name;
     }
     EXPECT_EQ(documented.size(), names.size());
+}
+
+// Every registered mapping with coefficients is documented in the shipped example with exactly
+// its keys (a mapping without coefficients has no block).
+TEST(CouplingParameters, DocumentedMappingKeysMatchTheRegistry)
+{
+    std::vector<std::string> names;
+    for (const auto& t : mapping::mappingTypes())
+        names.push_back(t.name);
+    const auto documented = documentedKeys("mapping", names);
+    for (const auto& t : mapping::mappingTypes())
+    {
+        if (t.keys.empty())
+        {
+            EXPECT_EQ(documented.count(t.name), 0u) << t.name << " has no coefficients";
+            continue;
+        }
+        ASSERT_EQ(documented.count(t.name), 1u)
+            << t.name << " is registered but not documented in config/coupled.example.yaml";
+        EXPECT_EQ(documented.at(t.name), std::set<std::string>(t.keys.begin(), t.keys.end()))
+            << "keys of mapping." << t.name;
+    }
 }

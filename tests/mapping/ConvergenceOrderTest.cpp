@@ -4,6 +4,10 @@
 #include "Clouds.hpp"
 
 #include "mapping/Mapping.hpp"
+#include "mapping/RbfPartitionOfUnity.hpp"
+#include "mapping/RbfThinPlate.hpp"
+#include "mapping/RbfWendlandC2.hpp"
+#include "mapping/Registry.hpp"
 
 #include <gtest/gtest.h>
 
@@ -34,7 +38,7 @@ struct Orders
 Orders studyOrder(const MappingParameters& params, const std::vector<int>& levels)
 {
     const double pi = std::acos(-1.0);
-    std::printf("%s\n  %10s %8s %12s %6s %12s %6s\n", params.type.c_str(), "h [m]", "N_s",
+    std::printf("%s\n  %10s %8s %12s %6s %12s %6s\n", params.type().c_str(), "h [m]", "N_s",
                 "max error", "rate", "rms error", "rate");
     double previousH = 0, previousError = 0, previousRms = 0;
     Orders rate;
@@ -87,7 +91,7 @@ TEST(MappingConvergence, NearestNeighbourIsFirstOrder)
 TEST(MappingConvergence, ThinPlateIsAboutSecondOrder)
 {
     MappingParameters p;
-    p.type = "rbf-thin-plate";
+    p.strategy = mappingType("rbf-thin-plate").defaults();
     const Orders order = studyOrder(p, {12, 24, 48});
     EXPECT_GE(order.max, 1.7);
     EXPECT_GE(order.rms, 2.0);
@@ -98,8 +102,8 @@ TEST(MappingConvergence, ThinPlateIsAboutSecondOrder)
 TEST(MappingConvergence, WendlandC2FixedSupportIsAboutSecondOrder)
 {
     MappingParameters p;
-    p.type = "rbf-wendland-c2";
-    p.wendland.supportRadius = 0.5;
+    p.strategy = mappingType("rbf-wendland-c2").defaults();
+    p.strategy.get<WendlandParameters>()->supportRadius = 0.5;
     const Orders order = studyOrder(p, {12, 24, 48});
     EXPECT_GE(order.max, 1.7);
     EXPECT_GE(order.rms, 2.0);
@@ -111,7 +115,7 @@ TEST(MappingConvergence, WendlandC2FixedSupportIsAboutSecondOrder)
 TEST(MappingConvergence, PartitionOfUnityIsAboutSecondOrder)
 {
     MappingParameters p;
-    p.type = "rbf-pu";
+    p.strategy = mappingType("rbf-pu").defaults();
     const Orders order = studyOrder(p, {12, 24, 48, 96, 192});
     EXPECT_GE(order.max, 1.7);
     EXPECT_GE(order.rms, 1.85);

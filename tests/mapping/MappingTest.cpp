@@ -5,6 +5,10 @@
 
 #include "mapping/Mapping.hpp"
 #include "mapping/NearestNeighbour.hpp"
+#include "mapping/RbfPartitionOfUnity.hpp"
+#include "mapping/RbfThinPlate.hpp"
+#include "mapping/RbfWendlandC2.hpp"
+#include "mapping/Registry.hpp"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -22,8 +26,9 @@ namespace
 MappingParameters params(const std::string& type)
 {
     MappingParameters p;
-    p.type = type;
-    p.wendland.supportRadius = 0.4; // m: about 3 solid spacings at nTheta = 24
+    p.strategy = mappingType(type).defaults();
+    if (auto* w = p.strategy.get<WendlandParameters>())
+        w->supportRadius = 0.4; // m: about 3 solid spacings at nTheta = 24
     return p;
 }
 
@@ -82,7 +87,8 @@ TEST_P(RbfMapping, ReproducesLinearFieldsOnFlatInterface)
     const PointCloud s = plate(13, 9, 1.2, 0.8, 0.0, 0.0);
     const PointCloud t = plate(17, 12, 1.1, 0.7, 0.05, 0.05);
     auto p = params(GetParam());
-    p.wendland.supportRadius = 0.35;
+    if (auto* w = p.strategy.get<WendlandParameters>())
+        w->supportRadius = 0.35;
     const auto mapping = buildMapping(p, s, t);
     Values mapped(t.rows(), 3);
     mapping->applyConsistent(linearField(s), mapped);
@@ -136,9 +142,9 @@ TEST(WendlandIterative, MatchesDirectAndKeepsTheExactProperties)
     // part never goes through the solver.
     const PointCloud s = solidCylinder(24), t = fluidCylinder(24);
     auto p = params("rbf-wendland-c2");
-    p.wendland.solver = "direct";
+    p.strategy.get<WendlandParameters>()->solver = "direct";
     const auto direct = buildMapping(p, s, t);
-    p.wendland.solver = "iterative";
+    p.strategy.get<WendlandParameters>()->solver = "iterative";
     const auto iterative = buildMapping(p, s, t);
     const Values g = faceForces(t.rows());
     Values fd(s.rows(), 3), fi(s.rows(), 3), ui(t.rows(), 3), ud(t.rows(), 3);
@@ -229,17 +235,27 @@ TEST(MappingParameters, RejectsBadInputWithOneLineMessages)
         }
         return std::string();
     };
-    MappingParameters p = params("rbf-quadratic");
-    EXPECT_EQ(message(p), "mapping.type 'rbf-quadratic' is unknown; use one of "
-                          "nearest-neighbour, rbf-thin-plate, rbf-wendland-c2, rbf-pu");
+    try
+    {
+        mappingType("rbf-quadratic");
+        FAIL() << "an unknown mapping type was accepted";
+    }
+    catch (const std::runtime_error& e)
+    {
+        EXPECT_EQ(std::string(e.what()),
+                  "mapping.type 'rbf-quadratic' is unknown; use one of "
+                  "nearest-neighbour, rbf-thin-plate, rbf-wendland-c2, rbf-pu");
+    }
+    MappingParameters p;
+    EXPECT_EQ(message(p), ""); // nearest-neighbour by default
     p = params("rbf-wendland-c2");
-    p.wendland.supportRadius = 0.0;
+    p.strategy.get<WendlandParameters>()->supportRadius = 0.0;
     EXPECT_NE(message(p).find("rbf-wendland-c2.support_radius must be > 0 m"), std::string::npos);
     // Issue 15: numbers printed as 0.000000; %g keeps small values.
-    p.wendland.supportRadius = -1e-7;
+    p.strategy.get<WendlandParameters>()->supportRadius = -1e-7;
     EXPECT_NE(message(p).find("(got -1e-07)"), std::string::npos) << message(p);
-    p.wendland.iterativeTolerance = 2.0;
-    p.wendland.supportRadius = 1e-3;
+    p.strategy.get<WendlandParameters>()->iterativeTolerance = 2.0;
+    p.strategy.get<WendlandParameters>()->supportRadius = 1e-3;
     EXPECT_NE(message(p).find("rbf-wendland-c2.iterative_tolerance must be in (0, 1) (got 2)"),
               std::string::npos)
         << message(p);
@@ -253,7 +269,8 @@ TEST(MappingSetup, RefusesTooSmallSupportRadiusAndTooLargeDenseSystems)
 {
     const PointCloud s = solidCylinder(16), t = fluidCylinder(16);
     auto p = params("rbf-wendland-c2");
-    p.wendland.supportRadius = 1e-5; // well below the node spacing (0.2 m)
+    p.strategy.get<WendlandParameters>()->supportRadius =
+        1e-5; // well below the node spacing (0.2 m)
     try
     {
         buildMapping(p, s, t);
@@ -267,7 +284,7 @@ TEST(MappingSetup, RefusesTooSmallSupportRadiusAndTooLargeDenseSystems)
             << e.what();
     }
     p = params("rbf-thin-plate");
-    p.thinPlate.maxSourcePoints = 100;
+    p.strategy.get<ThinPlateParameters>()->maxSourcePoints = 100;
     EXPECT_THROW(buildMapping(p, s, t), std::runtime_error);
 
     PointCloud duplicated = s;

@@ -5,6 +5,10 @@
 #include "Clouds.hpp"
 
 #include "mapping/Mapping.hpp"
+#include "mapping/RbfPartitionOfUnity.hpp"
+#include "mapping/RbfThinPlate.hpp"
+#include "mapping/RbfWendlandC2.hpp"
+#include "mapping/Registry.hpp"
 
 #include <gtest/gtest.h>
 
@@ -19,9 +23,12 @@ TEST(MappingApply, AllocatesNothingAfterTheFirstCall)
     for (const char* type : {"nearest-neighbour", "rbf-thin-plate", "rbf-wendland-c2", "rbf-pu"})
     {
         MappingParameters p;
-        p.type = type;
-        p.wendland.supportRadius = 0.4;
-        p.wendland.solver = "direct"; // the iterative solver allocates work vectors per solve
+        p.strategy = mappingType(type).defaults();
+        if (auto* w = p.strategy.get<WendlandParameters>())
+        {
+            w->supportRadius = 0.4;
+            w->solver = "direct"; // the iterative solver allocates work vectors per solve
+        }
         const auto mapping = buildMapping(p, s, t);
         const Values u = Values::Ones(s.rows(), 3), g = Values::Ones(t.rows(), 3);
         Values v(t.rows(), 3), f(s.rows(), 3);
@@ -43,7 +50,7 @@ TEST(MappingApply, PartitionOfUnityCorrectionAllocatesNothingAfterTheFirstCall)
     // Coplanar patches with targets off their plane: the correction path of rbf-pu.
     const PointCloud s = corner(12, 0.0, 0.0), t = corner(17, 0.3, 0.002);
     MappingParameters p;
-    p.type = "rbf-pu";
+    p.strategy = mappingType("rbf-pu").defaults();
     const auto mapping = buildMapping(p, s, t);
     const Values u = Values::Ones(s.rows(), 3), g = Values::Ones(t.rows(), 3);
     Values v(t.rows(), 3), f(s.rows(), 3), v1(t.rows(), 1);

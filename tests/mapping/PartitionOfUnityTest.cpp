@@ -5,6 +5,9 @@
 
 #include "mapping/Mapping.hpp"
 #include "mapping/RbfPartitionOfUnity.hpp"
+#include "mapping/RbfThinPlate.hpp"
+#include "mapping/RbfWendlandC2.hpp"
+#include "mapping/Registry.hpp"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -25,7 +28,7 @@ namespace
 MappingParameters partitionOfUnity()
 {
     MappingParameters p;
-    p.type = "rbf-pu";
+    p.strategy = mappingType("rbf-pu").defaults();
     return p;
 }
 
@@ -169,10 +172,10 @@ TEST(PartitionOfUnity, AsAccurateAsWendlandOnASmoothField)
     };
     const double pu = error(partitionOfUnity());
     MappingParameters wendland;
-    wendland.type = "rbf-wendland-c2";
-    wendland.wendland.supportRadius = 0.5;
+    wendland.strategy = mappingType("rbf-wendland-c2").defaults();
+    wendland.strategy.get<WendlandParameters>()->supportRadius = 0.5;
     const double wendlandWide = error(wendland);
-    wendland.wendland.supportRadius = 4.0 * std::acos(-1.0) / 48.0;
+    wendland.strategy.get<WendlandParameters>()->supportRadius = 4.0 * std::acos(-1.0) / 48.0;
     const double wendlandNarrow = error(wendland);
     std::printf("max relative error: rbf-pu %.2e, rbf-wendland-c2 0.5 m %.2e, 4 h %.2e\n", pu,
                 wendlandWide, wendlandNarrow);
@@ -218,12 +221,12 @@ TEST(PartitionOfUnity, RejectsBadInputWithOneLineMessages)
     };
     MappingParameters p = partitionOfUnity();
     EXPECT_EQ(message(p), "");
-    p.partitionOfUnity.pointsPerPatch = 3;
+    p.strategy.get<PartitionOfUnityParameters>()->pointsPerPatch = 3;
     EXPECT_EQ(message(p), "mapping.rbf-pu.points_per_patch must be in [4, 200] (got 3); e.g. 20");
     p = partitionOfUnity();
-    p.partitionOfUnity.centreSpacing = 1.0;
+    p.strategy.get<PartitionOfUnityParameters>()->centreSpacing = 1.0;
     EXPECT_EQ(message(p), "mapping.rbf-pu.centre_spacing must be in (0, 1) (got 1); e.g. 0.85");
-    p.partitionOfUnity.centreSpacing = std::nan("");
+    p.strategy.get<PartitionOfUnityParameters>()->centreSpacing = std::nan("");
     EXPECT_NE(message(p).find("mapping.rbf-pu.centre_spacing"), std::string::npos);
     for (const std::string& text : {message(p), message(partitionOfUnity())})
         EXPECT_EQ(text.find('\n'), std::string::npos);

@@ -3,6 +3,10 @@
 #include "Clouds.hpp"
 
 #include "mapping/Quality.hpp"
+#include "mapping/RbfPartitionOfUnity.hpp"
+#include "mapping/RbfThinPlate.hpp"
+#include "mapping/RbfWendlandC2.hpp"
+#include "mapping/Registry.hpp"
 
 #include <gtest/gtest.h>
 
@@ -49,8 +53,9 @@ TEST(MappingQuality, KnownFiguresForAShiftedGrid)
 
     for (const char* type : {"rbf-thin-plate", "rbf-wendland-c2"})
     {
-        p.type = type;
-        p.wendland.supportRadius = 0.35;
+        p.strategy = mappingType(type).defaults();
+        if (auto* w = p.strategy.get<WendlandParameters>())
+            w->supportRadius = 0.35;
         const MappingQuality r = assessQuality(*buildMapping(p, s, t), s, t);
         std::printf("%s: %s\n", type, r.toString().c_str());
         EXPECT_LT(r.coordinateMaxError, 1e-12) << type;

@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "acceleration/Accelerator.hpp"
 
-#include "acceleration/Registry.hpp"
-
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -28,25 +26,6 @@ void Accelerator::checkSizes(const Eigen::VectorXd& previousIterate,
                                  std::to_string(solverOutput.size()) + " returned, " +
                                  std::to_string(expected) +
                                  " in this level); the interface must not change within a level");
-}
-
-void AcceleratorParameters::validate() const
-{
-    if (!model_)
-        throw std::runtime_error("acceleration.type is not set; use one of " +
-                                 acceleratorTypeList());
-    model_->validate();
-}
-
-std::unique_ptr<Accelerator> AcceleratorParameters::make() const
-{
-    validate();
-    return model_->make();
-}
-
-std::string AcceleratorParameters::echo() const
-{
-    return model_ ? model_->echo() : "{}";
 }
 
 std::unique_ptr<Accelerator> makeAccelerator(const AcceleratorParameters& params)

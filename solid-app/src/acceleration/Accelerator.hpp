@@ -6,17 +6,14 @@
 // Strategies by keyword (AcceleratorParameters::type), registered in Registry.hpp.
 #pragma once
 
+#include "config/Strategy.hpp"
+
 #include <Eigen/Core>
 
 #include <limits>
 #include <memory>
 #include <string>
 #include <vector>
-
-namespace fsi::config
-{
-class Block;
-}
 
 namespace fsi::acceleration
 {
@@ -32,6 +29,7 @@ struct AcceleratorState
 class Accelerator
 {
 public:
+    static constexpr const char* kConfigKey = "acceleration"; // for config::Strategy messages
     virtual ~Accelerator() = default;
 
     virtual std::string name() const = 0;
@@ -76,73 +74,9 @@ protected:
     std::string note_;
 };
 
-// The parsed coefficients of the chosen strategy, type-erased. A strategy's parameter struct P
-// provides (see Aitken.hpp for an example):
-//   static constexpr const char* keyword;         // acceleration.type and its coefficient block
-//   using Strategy = <the Accelerator class>;     // constructed from P
-//   static const std::vector<std::string>& keys(); // the coefficient keys, as documented
-//   static P parse(const config::Block& block);   // reads the block (defaults for absent keys)
-//   void validate() const;                        // std::runtime_error naming acceleration.<key>
-//   std::string echo() const;                     // "{key: value, ...}" for the start-up echo
-// and registers itself in Registry.cpp with one line.
-class AcceleratorParameters
-{
-public:
-    AcceleratorParameters() = default; // no strategy chosen: validate() and make() throw
-    template <class P>
-    AcceleratorParameters(const P& params) // NOLINT: implicit by design
-        : type_(P::keyword), model_(std::make_shared<Holder<P>>(params))
-    {
-    }
-
-    const std::string& type() const { return type_; }
-    // Throws std::runtime_error, one line naming the key (acceleration.<key>) and the fix.
-    void validate() const;
-    std::unique_ptr<Accelerator> make() const; // validates first
-    std::string echo() const;                  // the coefficients, "{key: value, ...}"
-
-    // The coefficients of strategy P, nullptr when another strategy was chosen. Copies of this
-    // object do not share them.
-    template <class P> P* get()
-    {
-        auto* holder = dynamic_cast<Holder<P>*>(model_.get());
-        if (!holder)
-            return nullptr;
-        if (model_.use_count() > 1) // copy on write
-        {
-            model_ = std::make_shared<Holder<P>>(holder->params);
-            holder = static_cast<Holder<P>*>(model_.get());
-        }
-        return &holder->params;
-    }
-    template <class P> const P* get() const
-    {
-        const auto* holder = dynamic_cast<const Holder<P>*>(model_.get());
-        return holder ? &holder->params : nullptr;
-    }
-
-private:
-    struct Model
-    {
-        virtual ~Model() = default;
-        virtual void validate() const = 0;
-        virtual std::unique_ptr<Accelerator> make() const = 0;
-        virtual std::string echo() const = 0;
-    };
-    template <class P> struct Holder final : Model
-    {
-        explicit Holder(const P& p) : params(p) {}
-        void validate() const override { params.validate(); }
-        std::unique_ptr<Accelerator> make() const override
-        {
-            return std::make_unique<typename P::Strategy>(params);
-        }
-        std::string echo() const override { return params.echo(); }
-        P params;
-    };
-    std::string type_;
-    std::shared_ptr<Model> model_;
-};
+// The chosen strategy with its parsed coefficients (config/Strategy.hpp says what a strategy's
+// parameter struct provides; Registry.hpp lists them).
+using AcceleratorParameters = config::Strategy<Accelerator>;
 
 // params.make().
 std::unique_ptr<Accelerator> makeAccelerator(const AcceleratorParameters& params);

@@ -21,8 +21,9 @@ const std::vector<std::string>& AitkenParameters::keys()
     return k;
 }
 
-AitkenParameters AitkenParameters::parse(const config::Block& b)
+AitkenParameters AitkenParameters::parse(const config::Block& layer)
 {
+    const config::Block b = layer.block(keyword);
     b.allowOnly(keys());
     AitkenParameters p;
     p.initialRelaxation = b.number("initial_relaxation");

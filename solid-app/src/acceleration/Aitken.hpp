@@ -31,7 +31,7 @@ struct AitkenParameters
     double minRelaxation = 1e-3;   // |omega| >= min_relaxation; carry-over into [min, max]
 
     static const std::vector<std::string>& keys();
-    static AitkenParameters parse(const config::Block& b);
+    static AitkenParameters parse(const config::Block& layer); // reads layer.<keyword> (required)
     void validate() const;
     std::string echo() const;
 };

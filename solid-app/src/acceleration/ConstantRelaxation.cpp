@@ -15,8 +15,9 @@ const std::vector<std::string>& ConstantParameters::keys()
     return k;
 }
 
-ConstantParameters ConstantParameters::parse(const config::Block& b)
+ConstantParameters ConstantParameters::parse(const config::Block& layer)
 {
+    const config::Block b = layer.block(keyword);
     b.allowOnly(keys());
     ConstantParameters p;
     p.relaxation = b.number("relaxation");

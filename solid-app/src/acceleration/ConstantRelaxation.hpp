@@ -17,7 +17,7 @@ struct ConstantParameters
     double relaxation = std::numeric_limits<double>::quiet_NaN(); // omega, required, (0, 2)
 
     static const std::vector<std::string>& keys();
-    static ConstantParameters parse(const config::Block& b);
+    static ConstantParameters parse(const config::Block& layer); // reads layer.<keyword> (required)
     void validate() const;
     std::string echo() const;
 };

@@ -6,8 +6,9 @@
 namespace fsi::acceleration
 {
 
-IqnIlsParameters IqnIlsParameters::parse(const config::Block& b)
+IqnIlsParameters IqnIlsParameters::parse(const config::Block& layer)
 {
+    const config::Block b = layer.block(keyword);
     b.allowOnly(keys());
     IqnIlsParameters p;
     p.parseCommon(b);

@@ -21,7 +21,7 @@ struct IqnIlsParameters : QuasiNewtonParameters
     static constexpr const char* keyword = "iqn-ils";
     using Strategy = IqnIls;
     static const std::vector<std::string>& keys() { return commonKeys(); }
-    static IqnIlsParameters parse(const config::Block& b);
+    static IqnIlsParameters parse(const config::Block& layer); // reads layer.<keyword> (required)
     std::string echo() const { return "{" + echoCommon() + "}"; }
 };
 

@@ -7,25 +7,13 @@
 
 #include "acceleration/Accelerator.hpp"
 
-#include <functional>
 #include <string>
 #include <vector>
-
-namespace fsi::config
-{
-class Block;
-}
 
 namespace fsi::acceleration
 {
 
-struct AcceleratorType
-{
-    std::string name;              // acceleration.type and the name of its coefficient block
-    std::vector<std::string> keys; // the keys its coefficient block accepts
-    // Reads the coefficient block (defaults for absent keys; not yet validated).
-    std::function<AcceleratorParameters(const config::Block& coefficients)> parse;
-};
+using AcceleratorType = config::StrategyType<Accelerator>;
 
 // Every registered strategy, in registration order.
 const std::vector<AcceleratorType>& acceleratorTypes();
@@ -33,8 +21,5 @@ const std::vector<AcceleratorType>& acceleratorTypes();
 // The strategy called `name`; throws std::runtime_error "acceleration.type 'x' is unknown; use
 // one of ..." otherwise.
 const AcceleratorType& acceleratorType(const std::string& name);
-
-// "constant, aitken, iqn-ils" (for messages).
-std::string acceleratorTypeList();
 
 } // namespace fsi::acceleration

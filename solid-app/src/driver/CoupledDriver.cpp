@@ -229,9 +229,9 @@ void CoupledDriver::Impl::setUp(int restartLevel)
     nodalForceRows.resize(n / 3, 3);
     const auto& fi = fluid->interface();
     std::ostringstream s;
-    s << "[mapping] " << params.mapping.type << ": " << solidNodes.rows() << " solid wetted nodes, "
-      << fi.points.rows() << " fluid points, " << fi.faceCentres.rows() << " fluid faces; set-up "
-      << secondsSince(t0) << " s";
+    s << "[mapping] " << params.mapping.type() << ": " << solidNodes.rows()
+      << " solid wetted nodes, " << fi.points.rows() << " fluid points, " << fi.faceCentres.rows()
+      << " fluid faces; set-up " << secondsSince(t0) << " s";
     log.say(s.str());
     log.say("[mapping] points: " + mapping::assessQuality(*displacementMap, solidNodes, fi.points).toString());
     log.say("[mapping] faces:  " + mapping::assessQuality(*forceMap, solidNodes, fi.faceCentres).toString());

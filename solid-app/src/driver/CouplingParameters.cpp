@@ -3,6 +3,7 @@
 
 #include "acceleration/Registry.hpp"
 #include "config/YamlReader.hpp"
+#include "mapping/Registry.hpp"
 
 #include <cmath>
 #include <sstream>
@@ -50,48 +51,30 @@ acceleration::AcceleratorParameters parseAcceleration(const config::Block& b)
     b.allowOnly(allowed);
     const std::string type = b.choice("type", types);
     onlySelectedCoefficients(b, type, types);
-    const acceleration::AcceleratorParameters p =
-        acceleration::acceleratorType(type).parse(b.block(type));
+    const acceleration::AcceleratorParameters p = acceleration::acceleratorType(type).parse(b);
     validateIn(p, b, "type");
     return p;
 }
 
+// mapping: {type: NAME, overlap_tolerance: x, NAME: {coefficients}}; the strategies and their
+// keys come from the mapping layer's registry.
 mapping::MappingParameters parseMapping(const config::Block& b)
 {
-    const std::vector<std::string> types{"nearest-neighbour", "rbf-thin-plate", "rbf-wendland-c2",
-                                         "rbf-pu"};
-    b.allowOnly({"type", "overlap_tolerance", "rbf-thin-plate", "rbf-wendland-c2", "rbf-pu"});
-    mapping::MappingParameters p;
-    p.type = b.choice("type", types);
-    onlySelectedCoefficients(b, p.type, types);
+    std::vector<std::string> types;
+    for (const auto& t : mapping::mappingTypes())
+        types.push_back(t.name);
+    std::vector<std::string> allowed{"type", "overlap_tolerance"};
+    for (const auto& t : mapping::mappingTypes())
+        if (!t.keys.empty())
+            allowed.push_back(t.name);
+    b.allowOnly(allowed);
+    const std::string type = b.choice("type", types);
+    onlySelectedCoefficients(b, type, types);
+    mapping::MappingParameters p = mapping::mappingType(type).parse(b);
     p.overlapTolerance = b.number("overlap_tolerance", p.overlapTolerance);
-    if (p.type == "rbf-wendland-c2")
-    {
-        auto c = b.block("rbf-wendland-c2");
-        c.allowOnly({"support_radius", "solver", "direct_max_points", "iterative_tolerance"});
-        p.wendland.supportRadius = c.number("support_radius");
-        p.wendland.solver = c.choice("solver", {"auto", "direct", "iterative"}, p.wendland.solver);
-        p.wendland.directMaxPoints = c.integer("direct_max_points", static_cast<int>(p.wendland.directMaxPoints));
-        p.wendland.iterativeTolerance = c.number("iterative_tolerance", p.wendland.iterativeTolerance);
-    }
-    else if (p.type == "rbf-thin-plate" && b.has("rbf-thin-plate"))
-    {
-        auto c = b.block("rbf-thin-plate");
-        c.allowOnly({"max_source_points"});
-        p.thinPlate.maxSourcePoints = c.integer("max_source_points");
-    }
-    else if (p.type == "rbf-pu" && b.has("rbf-pu"))
-    {
-        auto c = b.block("rbf-pu");
-        c.allowOnly({"points_per_patch", "centre_spacing"});
-        p.partitionOfUnity.pointsPerPatch =
-            c.integer("points_per_patch", static_cast<int>(p.partitionOfUnity.pointsPerPatch));
-        p.partitionOfUnity.centreSpacing =
-            c.number("centre_spacing", p.partitionOfUnity.centreSpacing);
-    }
     // a coefficient error is named under the strategy's own block, e.g.
     // coupling.mapping.rbf-wendland-c2 (the block holds the offending key)
-    validateIn(p, b, p.type == "nearest-neighbour" || !b.has(p.type) ? std::string("type") : p.type);
+    validateIn(p, b, b.has(type) ? type : std::string("type"));
     return p;
 }
 
@@ -255,16 +238,10 @@ std::string CouplingParameters::echo() const
       << ", relative_tolerance: " << convergence.relativeTolerance << "}\n"
       << "  acceleration:\n    type: " << acceleration.type() << "\n"
       << "    " << acceleration.type() << ": " << acceleration.echo() << "\n";
-    s << "  mapping:\n    type: " << mapping.type << "\n    overlap_tolerance: "
-      << mapping.overlapTolerance << "\n";
-    if (mapping.type == "rbf-wendland-c2")
-        s << "    rbf-wendland-c2: {support_radius: " << mapping.wendland.supportRadius
-          << ", solver: " << mapping.wendland.solver
-          << ", direct_max_points: " << mapping.wendland.directMaxPoints
-          << ", iterative_tolerance: " << mapping.wendland.iterativeTolerance << "}\n";
-    if (mapping.type == "rbf-pu")
-        s << "    rbf-pu: {points_per_patch: " << mapping.partitionOfUnity.pointsPerPatch
-          << ", centre_spacing: " << mapping.partitionOfUnity.centreSpacing << "}\n";
+    s << "  mapping:\n    type: " << mapping.type()
+      << "\n    overlap_tolerance: " << mapping.overlapTolerance << "\n";
+    if (!mapping::mappingType(mapping.type()).keys.empty())
+        s << "    " << mapping.type() << ": " << mapping.strategy.echo() << "\n";
     s << "  time: {type: " << time.type;
     if (time.type == "list")
     {

@@ -12,6 +12,8 @@
 // moment too when H reproduces linear fields (all RBF kinds; not nearest-neighbour).
 #pragma once
 
+#include "config/Strategy.hpp"
+
 #include <Eigen/Core>
 
 #include <memory>
@@ -30,6 +32,7 @@ using Values = Eigen::MatrixXd;
 class Mapping
 {
 public:
+    static constexpr const char* kConfigKey = "mapping"; // for config::Strategy messages
     virtual ~Mapping() = default;
 
     // Keyword of the strategy ("nearest-neighbour", "rbf-thin-plate", "rbf-wendland-c2",
@@ -61,48 +64,22 @@ protected:
     Eigen::Index targetSize_ = 0;
 };
 
-// Coefficients of rbf-wendland-c2: phi(r) = (1 - r/rho)^4_+ (4 r/rho + 1).
-struct WendlandParameters
-{
-    double supportRadius = 0.0; // rho [m]; a few source-node spacings (3..6 is typical)
-    // "direct" (sparse LDLT, fast apply, fill grows fast with N) | "iterative" (CG with
-    // incomplete Cholesky, to iterative_tolerance) | "auto" (direct up to direct_max_points)
-    std::string solver = "auto";
-    long directMaxPoints = 20000;
-    double iterativeTolerance = 1e-10; // relative residual of each CG solve
-    void validate() const;             // throws: support_radius must be > 0, ...
-};
-
-// Coefficients of rbf-thin-plate: phi(r) = r^2 log r, global and dense (O(N^3) set-up).
-struct ThinPlateParameters
-{
-    long maxSourcePoints = 10000; // refuse larger interfaces (memory ~ 16 N^2 bytes)
-    void validate() const;
-};
-
-// Coefficients of rbf-pu, partition of unity: local cubic RBF + linear polynomial on
-// overlapping patches of k nearest source points, blended by smooth weights
-// (RbfPartitionOfUnity.hpp). Set-up and apply O(N), for any interface size.
-struct PartitionOfUnityParameters
-{
-    long pointsPerPatch = 20;    // k: source points of each local problem, in [4, 200]; more =
-                                 // a little more accurate, cost ~ k^2
-    double centreSpacing = 0.85; // in (0, 1): every target lies within this fraction of a patch
-                                 // radius from a patch centre; smaller = more overlap, slower
-    void validate() const;       // throws one line naming mapping.rbf-pu.<key>
-};
-
+// The chosen strategy with its coefficients (config/Strategy.hpp says what a strategy's
+// parameter struct provides; Registry.hpp lists them), and what every mapping shares.
 struct MappingParameters
 {
-    // "nearest-neighbour" | "rbf-thin-plate" | "rbf-wendland-c2" | "rbf-pu"
-    std::string type = "nearest-neighbour";
+    MappingParameters(); // nearest-neighbour
+    template <class P>
+    MappingParameters(const P& strategyParameters) // NOLINT: implicit
+        : strategy(strategyParameters)
+    {
+    }
+    config::Strategy<Mapping> strategy;
     // checkOverlap(): max distance from a target point to the nearest source point, relative to
     // the source interface size (bounding-box diagonal); larger means the meshes do not match.
     double overlapTolerance = 0.1;
-    WendlandParameters wendland;
-    ThinPlateParameters thinPlate;
-    PartitionOfUnityParameters partitionOfUnity;
 
+    const std::string& type() const { return strategy.type(); }
     // Throws std::runtime_error, one line naming the key (mapping.<key>) and the fix.
     void validate() const;
 };

@@ -6,6 +6,24 @@
 namespace fsi::mapping
 {
 
+const std::vector<std::string>& NearestNeighbourParameters::keys()
+{
+    static const std::vector<std::string> none;
+    return none;
+}
+
+NearestNeighbourParameters NearestNeighbourParameters::parse(const config::Block&)
+{
+    return {};
+}
+
+void NearestNeighbourParameters::validate() const {}
+
+std::string NearestNeighbourParameters::echo() const
+{
+    return "{}";
+}
+
 void NearestNeighbour::compute(const PointCloud& source, const PointCloud& target)
 {
     const KdTree tree(source);

@@ -13,9 +13,24 @@
 namespace fsi::mapping
 {
 
+class NearestNeighbour;
+
+// nearest-neighbour has no coefficients (no block).
+struct NearestNeighbourParameters
+{
+    static constexpr const char* keyword = "nearest-neighbour";
+    using Strategy = NearestNeighbour;
+    static const std::vector<std::string>& keys();
+    static NearestNeighbourParameters parse(const config::Block& layer); // nothing to read
+    void validate() const;
+    std::string echo() const;
+};
+
 class NearestNeighbour final : public Mapping
 {
 public:
+    NearestNeighbour() = default;
+    explicit NearestNeighbour(const NearestNeighbourParameters&) {}
     std::string name() const override { return "nearest-neighbour"; }
     void compute(const PointCloud& source, const PointCloud& target) override;
     void applyConsistent(const Eigen::Ref<const Values>& sourceValues,

@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "mapping/RbfPartitionOfUnity.hpp"
+#include "config/YamlReader.hpp"
+#include <sstream>
 
 #include "mapping/KdTree.hpp"
 #include "mapping/RbfSupport.hpp"
@@ -23,6 +25,41 @@
 
 namespace fsi::mapping
 {
+
+const std::vector<std::string>& PartitionOfUnityParameters::keys()
+{
+    static const std::vector<std::string> k{"points_per_patch", "centre_spacing"};
+    return k;
+}
+
+PartitionOfUnityParameters PartitionOfUnityParameters::parse(const config::Block& layer)
+{
+    PartitionOfUnityParameters p;
+    if (const auto b = layer.optionalBlock(keyword))
+    {
+        b->allowOnly(keys());
+        p.pointsPerPatch = b->integer("points_per_patch", static_cast<int>(p.pointsPerPatch));
+        p.centreSpacing = b->number("centre_spacing", p.centreSpacing);
+    }
+    return p;
+}
+
+void PartitionOfUnityParameters::validate() const
+{
+    if (pointsPerPatch < 4 || pointsPerPatch > 200)
+        throw std::runtime_error("mapping.rbf-pu.points_per_patch must be in [4, 200] (got " +
+                                 std::to_string(pointsPerPatch) + "); e.g. 20");
+    if (!(centreSpacing > 0.0 && centreSpacing < 1.0))
+        throw std::runtime_error("mapping.rbf-pu.centre_spacing must be in (0, 1) (got " +
+                                 config::formatNumber(centreSpacing) + "); e.g. 0.85");
+}
+
+std::string PartitionOfUnityParameters::echo() const
+{
+    std::ostringstream s;
+    s << "{points_per_patch: " << pointsPerPatch << ", centre_spacing: " << centreSpacing << "}";
+    return s.str();
+}
 
 namespace detail
 {

@@ -56,6 +56,26 @@ template <class T> LargeArray<T> makeLargeArray(std::size_t n)
 }
 } // namespace detail
 
+class RbfPartitionOfUnity;
+
+// Block rbf-pu (optional), partition of unity: local cubic RBF + linear polynomial on
+// overlapping patches of k nearest source points, blended by smooth weights. Set-up and apply
+// O(N), for any interface size.
+struct PartitionOfUnityParameters
+{
+    static constexpr const char* keyword = "rbf-pu";
+    using Strategy = RbfPartitionOfUnity;
+    long pointsPerPatch = 20;    // k: source points of each local problem, in [4, 200]; more =
+                                 // a little more accurate, cost ~ k^2
+    double centreSpacing = 0.85; // in (0, 1): every target lies within this fraction of a patch
+                                 // radius from a patch centre; smaller = more overlap, slower
+    static const std::vector<std::string>& keys();
+    static PartitionOfUnityParameters
+    parse(const config::Block& layer); // reads layer.<keyword> (optional)
+    void validate() const;
+    std::string echo() const;
+};
+
 class RbfPartitionOfUnity final : public Mapping
 {
 public:

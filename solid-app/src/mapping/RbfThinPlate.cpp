@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "mapping/RbfThinPlate.hpp"
+#include "config/YamlReader.hpp"
 
 #include "mapping/RbfSupport.hpp"
 
@@ -9,6 +10,36 @@
 
 namespace fsi::mapping
 {
+
+const std::vector<std::string>& ThinPlateParameters::keys()
+{
+    static const std::vector<std::string> k{"max_source_points"};
+    return k;
+}
+
+ThinPlateParameters ThinPlateParameters::parse(const config::Block& layer)
+{
+    ThinPlateParameters p;
+    if (const auto b = layer.optionalBlock(keyword))
+    {
+        b->allowOnly(keys());
+        p.maxSourcePoints = b->integer("max_source_points", static_cast<int>(p.maxSourcePoints));
+    }
+    return p;
+}
+
+void ThinPlateParameters::validate() const
+{
+    if (maxSourcePoints < 1)
+        throw std::runtime_error("rbf-thin-plate.max_source_points must be >= 1 for type "
+                                 "rbf-thin-plate (got " +
+                                 std::to_string(maxSourcePoints) + ")");
+}
+
+std::string ThinPlateParameters::echo() const
+{
+    return "{max_source_points: " + std::to_string(maxSourcePoints) + "}";
+}
 
 namespace
 {

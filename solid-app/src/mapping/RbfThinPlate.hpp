@@ -15,10 +15,29 @@
 namespace fsi::mapping
 {
 
+class RbfThinPlate;
+
+// Block rbf-thin-plate (optional): phi(r) = r^2 log r, global and dense (O(N^3) set-up).
+struct ThinPlateParameters
+{
+    static constexpr const char* keyword = "rbf-thin-plate";
+    using Strategy = RbfThinPlate;
+    long maxSourcePoints = 10000; // refuse larger interfaces (memory ~ 16 N^2 bytes)
+    static const std::vector<std::string>& keys();
+    static ThinPlateParameters
+    parse(const config::Block& layer); // reads layer.<keyword> (optional)
+    void validate() const;
+    std::string echo() const;
+};
+
 class RbfThinPlate final : public Mapping
 {
 public:
     explicit RbfThinPlate(long maxSourcePoints = 10000) : maxSourcePoints_(maxSourcePoints) {}
+    explicit RbfThinPlate(const ThinPlateParameters& params)
+        : maxSourcePoints_(params.maxSourcePoints)
+    {
+    }
     std::string name() const override { return "rbf-thin-plate"; }
     void compute(const PointCloud& source, const PointCloud& target) override;
     void applyConsistent(const Eigen::Ref<const Values>& sourceValues,

@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "mapping/RbfWendlandC2.hpp"
+#include "config/YamlReader.hpp"
+#include <sstream>
 
 #include "mapping/KdTree.hpp"
 #include "mapping/RbfSupport.hpp"
@@ -13,6 +15,53 @@
 
 namespace fsi::mapping
 {
+
+const std::vector<std::string>& WendlandParameters::keys()
+{
+    static const std::vector<std::string> k{"support_radius", "solver", "direct_max_points",
+                                            "iterative_tolerance"};
+    return k;
+}
+
+WendlandParameters WendlandParameters::parse(const config::Block& layer)
+{
+    const config::Block b = layer.block(keyword);
+    b.allowOnly(keys());
+    WendlandParameters p;
+    p.supportRadius = b.number("support_radius");
+    p.solver = b.choice("solver", {"auto", "direct", "iterative"}, p.solver);
+    p.directMaxPoints = b.integer("direct_max_points", static_cast<int>(p.directMaxPoints));
+    p.iterativeTolerance = b.number("iterative_tolerance", p.iterativeTolerance);
+    return p;
+}
+
+void WendlandParameters::validate() const
+{
+    if (!(supportRadius > 0.0) || !std::isfinite(supportRadius))
+        throw std::runtime_error("rbf-wendland-c2.support_radius must be > 0 m for type "
+                                 "rbf-wendland-c2 (got " +
+                                 config::formatNumber(supportRadius) +
+                                 "); set it to a few solid node spacings");
+    if (solver != "auto" && solver != "direct" && solver != "iterative")
+        throw std::runtime_error("rbf-wendland-c2.solver '" + solver +
+                                 "' is unknown; use auto, direct or iterative");
+    if (directMaxPoints < 0)
+        throw std::runtime_error("rbf-wendland-c2.direct_max_points must be >= 0 (got " +
+                                 std::to_string(directMaxPoints) + "); e.g. 20000");
+    if (!(iterativeTolerance > 0.0 && iterativeTolerance < 1.0))
+        throw std::runtime_error("rbf-wendland-c2.iterative_tolerance must be in (0, 1) (got " +
+                                 config::formatNumber(iterativeTolerance) + "); e.g. 1e-10");
+}
+
+std::string WendlandParameters::echo() const
+{
+    std::ostringstream s;
+    s << "{support_radius: " << supportRadius << ", solver: " << solver
+      << ", direct_max_points: " << directMaxPoints
+      << ", iterative_tolerance: " << iterativeTolerance << "}";
+    return s.str();
+}
+
 namespace
 {
 // %g keeps small values readable in messages (1e-05, not 0.000000).

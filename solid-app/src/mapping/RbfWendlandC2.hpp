@@ -25,6 +25,25 @@
 namespace fsi::mapping
 {
 
+class RbfWendlandC2;
+
+// Block rbf-wendland-c2 (required): phi(r) = (1 - r/rho)^4_+ (4 r/rho + 1).
+struct WendlandParameters
+{
+    static constexpr const char* keyword = "rbf-wendland-c2";
+    using Strategy = RbfWendlandC2;
+    double supportRadius = 0.0; // rho [m]; a few source-node spacings (3..6 is typical)
+    // "direct" (sparse LDLT, fast apply, fill grows fast with N) | "iterative" (CG with
+    // incomplete Cholesky, to iterative_tolerance) | "auto" (direct up to direct_max_points)
+    std::string solver = "auto";
+    long directMaxPoints = 20000;
+    double iterativeTolerance = 1e-10; // relative residual of each CG solve
+    static const std::vector<std::string>& keys();
+    static WendlandParameters parse(const config::Block& layer); // reads layer.<keyword> (required)
+    void validate() const;
+    std::string echo() const;
+};
+
 class RbfWendlandC2 final : public Mapping
 {
 public:
