@@ -23,7 +23,7 @@ import subprocess
 import sys
 import time
 
-ROOT = os.environ.get("FSI_ROOT", os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..")))
+ROOT = os.environ.get("FSI_ROOT", os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", "..")))
 CASE = os.path.join(ROOT, "cases", "turek-hron-fsi1")
 QUANTITIES = ("ux", "uy", "drag", "lift")
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
-# tests/hydrofoil/test_restart.sh WORK [--mesh-from RUNDIR]
+# tests/cases/hydrofoil/test_restart.sh WORK [--mesh-from RUNDIR]
 #
 # Restart of the main job: the coarse viscoelastic hydrofoil to t = 2 s (levels 0, 0.5, 2 s) is
 # run once uninterrupted; a second run is killed (SIGKILL to its fluid-app processes, found by

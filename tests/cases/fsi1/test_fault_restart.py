@@ -23,7 +23,7 @@ import sys
 import time
 
 here = os.path.dirname(os.path.abspath(__file__))
-root = os.environ.get("FSI_ROOT") or os.path.abspath(os.path.join(here, "..", ".."))
+root = os.environ.get("FSI_ROOT") or os.path.abspath(os.path.join(here, "..", "..", ".."))
 
 
 def fail(msg):
