@@ -4,6 +4,9 @@
 #   one GoogleTest executable registered as one CTest test (serial).
 # fsi_add_mpi_test(NAME n RANKS r COMMAND exe args... LABELS mpi ...)
 #   runs COMMAND under mpiexec with RANKS ranks (oversubscribed, loopback only).
+# fsi_add_test_folders([SKIP name ...])
+#   add_subdirectory() for every sub-folder of the calling folder that has a
+#   CMakeLists.txt (tests/<layer>/, tests/cases/<case>/), except the SKIP names.
 # FSI_MPIEXEC / FSI_MPI_FLAGS / FSI_MPI_ENV are exported for tests that build
 # their own launch lines (MPMD, two mpiruns + ompi-server).
 
@@ -34,4 +37,15 @@ function(fsi_add_mpi_test)
            COMMAND ${FSI_MPIEXEC} ${FSI_MPI_FLAGS} -np ${A_RANKS} ${A_COMMAND})
   set_tests_properties(${A_NAME} PROPERTIES LABELS "${A_LABELS}" PROCESSORS ${A_RANKS}
                        TIMEOUT ${A_TIMEOUT} ENVIRONMENT "${FSI_MPI_ENV}")
+endfunction()
+
+function(fsi_add_test_folders)
+  cmake_parse_arguments(A "" "" "SKIP" ${ARGN})
+  file(GLOB _dirs LIST_DIRECTORIES true ${CMAKE_CURRENT_SOURCE_DIR}/*)
+  foreach(_dir ${_dirs})
+    get_filename_component(_name ${_dir} NAME)
+    if(IS_DIRECTORY ${_dir} AND EXISTS ${_dir}/CMakeLists.txt AND NOT _name IN_LIST A_SKIP)
+      add_subdirectory(${_dir})
+    endif()
+  endforeach()
 endfunction()

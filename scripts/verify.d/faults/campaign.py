@@ -39,7 +39,7 @@ here = os.path.dirname(os.path.abspath(__file__))
 root = os.environ.get("FSI_ROOT") or os.path.abspath(os.path.join(here, "..", "..", ".."))
 case = os.path.join(root, "cases", "turek-hron-fsi1")
 TIMES = "0,0.5,1,2,4,1e6"
-TOL = 5e-8  # [m] restart vs reference, as tests/fsi1/fault_restart_test.py
+TOL = 5e-8  # [m] restart vs reference, as tests/cases/fsi1/test_fault_restart.py
 
 
 def env():

@@ -47,7 +47,7 @@ public:
     // targetValues = H sourceValues. Pre: compute() done; sourceValues.rows() == sourceSize(),
     // targetValues is sized targetSize() x sourceValues.cols() by the caller. No factorisation,
     // and no heap allocation after the first call with a given column count (checked by
-    // tests/mapping/NoAllocationTest; except rbf-wendland-c2 with the iterative solver).
+    // tests/mapping/test_no_allocation.cpp; except rbf-wendland-c2 with the iterative solver).
     virtual void applyConsistent(const Eigen::Ref<const Values>& sourceValues,
                                  Eigen::Ref<Values> targetValues) const = 0;
 

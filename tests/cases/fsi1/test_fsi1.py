@@ -2,8 +2,8 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Turek-Hron FSI1 coupled verification tests (real fluid-app + solid-app).
 
-usage: fsi1_test.py elastic WORKDIR --launch mpmd|port --tol ux=A,uy=B,drag=C,lift=D
-       fsi1_test.py viscoelastic WORKDIR --launch mpmd|port --tol-match T
+usage: test_fsi1.py elastic WORKDIR --launch mpmd|port --tol ux=A,uy=B,drag=C,lift=D
+       test_fsi1.py viscoelastic WORKDIR --launch mpmd|port --tol-match T
 
 elastic:      runs cases/turek-hron-fsi1/run.sh --preset coarse in a copy of the case and
               asserts |rel_error| <= tol for ux(A), uy(A), drag, lift against the FSI1
@@ -23,7 +23,7 @@ import subprocess
 import sys
 import time
 
-ROOT = os.environ.get("FSI_ROOT", os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..")))
+ROOT = os.environ.get("FSI_ROOT", os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..", "..")))
 CASE = os.path.join(ROOT, "cases", "turek-hron-fsi1")
 QUANTITIES = ("ux", "uy", "drag", "lift")
 

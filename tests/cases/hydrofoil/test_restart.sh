@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
-# tests/hydrofoil/restart_test.sh WORK [--mesh-from RUNDIR]
+# tests/cases/hydrofoil/test_restart.sh WORK [--mesh-from RUNDIR]
 #
 # Restart of the main job: the coarse viscoelastic hydrofoil to t = 2 s (levels 0, 0.5, 2 s) is
 # run once uninterrupted; a second run is killed (SIGKILL to its fluid-app processes, found by
@@ -9,7 +9,7 @@
 # 5e-6 m of interface displacement). Measured 2026-11-22: 5.9e-6 deg, 3.4e-6. Needs fluid-app and
 # solid-app on PATH and FSI_ROOT; meshes the coarse preset unless --mesh-from is given.
 set -euo pipefail
-work=${1:?usage: restart_test.sh WORK [--mesh-from RUNDIR]}
+work=${1:?usage: test_restart.sh WORK [--mesh-from RUNDIR]}
 shift
 meshArgs=()
 [ "${1:-}" = --mesh-from ] && meshArgs=(--mesh-from "$2")

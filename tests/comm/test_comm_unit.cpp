@@ -82,7 +82,8 @@ TEST(MessageHeader, RejectsForeignCorruptAndMismatchedHeaders)
     h.version = 99;
     EXPECT_EQ(messageOf<ProtocolError>([&] { decodeHeader(encodeHeader(h)); }),
               "fsi::comm: protocol version mismatch: peer speaks version 99, this program "
-              "version " + std::to_string(kProtocolVersion) + "; build both programs from the same source");
+              "version " +
+                  std::to_string(kProtocolVersion) + "; build both programs from the same source");
     h.version = kProtocolVersion;
 
     h.kind = static_cast<MessageKind>(77);

@@ -3,7 +3,7 @@
 """Fault and restart test on viscoelastic Turek-Hron FSI1 (coarse, real fluid-app + solid-app,
 port launch: two mpiruns, 1 + 1 ranks).
 
-usage: fault_restart_test.py WORK_DIR [--times 0,0.5,1,2,4,1e6] [--timeout 20]
+usage: test_fault_restart.py WORK_DIR [--times 0,0.5,1,2,4,1e6] [--timeout 20]
 
 1. An uninterrupted run over the levels gives the reference history.
 2. The same run again; once level 2 is checkpointed, the fluid-app process of this run is killed
@@ -23,7 +23,7 @@ import sys
 import time
 
 here = os.path.dirname(os.path.abspath(__file__))
-root = os.environ.get("FSI_ROOT") or os.path.abspath(os.path.join(here, "..", ".."))
+root = os.environ.get("FSI_ROOT") or os.path.abspath(os.path.join(here, "..", "..", ".."))
 
 
 def fail(msg):

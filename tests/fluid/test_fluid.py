@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """fluid-app tests on the Turek-Hron CFD1 case (cases/turek-hron-cfd1).
 
-usage: fluid_test.py TEST --fluid-app EXE --case-dir DIR --work DIR
+usage: test_fluid.py TEST --fluid-app EXE --case-dir DIR --work DIR
                      [--mpiexec MPIRUN] [--fake-solid EXE] [--launch-port SCRIPT]
 TEST: cfd1-coarse | cfd1-fine | force-consistency | motion-rotation | motion-bending |
       quality-guard | parallel-equivalence | mpmd | port | peer-abort

@@ -1,7 +1,7 @@
 #!/bin/sh
 # SPDX-License-Identifier: GPL-3.0-or-later
 # fluid-app -help: exit status 0 and every option listed, the fsi::comm flags included.
-# usage: help_test.sh FLUID_APP
+# usage: test_help.sh FLUID_APP
 app=$1
 out=$("$app" -help 2>&1)
 rc=$?

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Checks of scripts/plot_hydrofoil.py's tip-section outline (the paper's Fig. 5).
-Run: /usr/bin/python3 tests/hydrofoil/test_plot_hydrofoil.py"""
+Run: /usr/bin/python3 tests/cases/hydrofoil/test_plot_hydrofoil.py"""
 import os
 import sys
 import tempfile
@@ -11,7 +11,7 @@ import unittest
 import numpy as np
 from matplotlib.path import Path
 
-ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..")
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
 import plot_hydrofoil as ph  # noqa: E402
 

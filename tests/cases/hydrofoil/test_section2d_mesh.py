@@ -9,8 +9,8 @@ import unittest
 import numpy as np
 
 here = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(here, "..", "..", "cases", "hydrofoil", "section2d"))
-sys.path.insert(0, os.path.join(here, "..", "..", "cases", "hydrofoil", "geometry"))
+sys.path.insert(0, os.path.join(here, "..", "..", "..", "cases", "hydrofoil", "section2d"))
+sys.path.insert(0, os.path.join(here, "..", "..", "..", "cases", "hydrofoil", "geometry"))
 import mesh2d  # noqa: E402
 import naca66a08  # noqa: E402
 
