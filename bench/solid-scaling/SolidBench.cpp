@@ -197,8 +197,8 @@ mesh::Mesh boxMesh(const std::array<int, 3>& n, double h)
         {
             // two Tri6 per square face at x = 0 (diagonal (j, k) -> (j+1, k+1))
             const int J = 2 * j, K = 2 * k;
-            const int a[6] = {node(0, J, K),         node(0, J + 2, K),     node(0, J + 2, K + 2),
-                              node(0, J + 1, K),     node(0, J + 2, K + 1), node(0, J + 1, K + 1)};
+            const int a[6] = {node(0, J, K),     node(0, J + 2, K),     node(0, J + 2, K + 2),
+                              node(0, J + 1, K), node(0, J + 2, K + 1), node(0, J + 1, K + 1)};
             const int b[6] = {node(0, J, K),         node(0, J + 2, K + 2), node(0, J, K + 2),
                               node(0, J + 1, K + 1), node(0, J + 1, K + 2), node(0, J, K + 1)};
             clamped.faces.add(mesh::CellType::Tri6, a, 6);
@@ -333,8 +333,8 @@ int main(int argc, char** argv)
                         args.orderingName.c_str(), residual[0], st.refinementSteps,
                         st.lowRankFallbacks, st.factorizationMemoryMb, st.fullRankFlops,
                         st.lowRankFlops, newton, args.cells[0], args.cells[1], args.cells[2],
-                        assemblyS, wall, blas.c_str(), args.solver.threadsPerRank,
-                        st.factorEntries, st.lowRankFactorEntries, history.c_str());
+                        assemblyS, wall, blas.c_str(), args.solver.threadsPerRank, st.factorEntries,
+                        st.lowRankFactorEntries, history.c_str());
             std::fflush(stdout);
         }
     }

@@ -255,17 +255,17 @@ int runStandalone(const config::Block& root, const RunOptions& options)
                         u[3 * node + 2]);
         }
         const auto& st = solver.linearSolver().statistics();
-        std::printf("solid-app: linear solver totals: analysis %.2f s (cpu %.2f, ordering %.2f), "
-                    "factorization %.2f s (cpu %.2f), solve %.2f s (cpu %.2f); factorization "
-                    "memory %lld MB (estimate %lld MB), BLR %s (flops %.3g of %.3g full rank, "
-                    "%d refinement steps, %d fallbacks), last checked residual %.2e (backward error "
-                    "%.1e)\n",
-                    st.analysisSeconds, st.analysisCpuSeconds, st.orderingSeconds,
-                    st.factorizationSeconds, st.factorizationCpuSeconds, st.solveSeconds,
-                    st.solveCpuSeconds, st.factorizationMemoryMb, st.estimatedMemoryMb,
-                    st.lowRankActive ? "on" : "off", st.lowRankFlops, st.fullRankFlops,
-                    st.refinementSteps, st.lowRankFallbacks, st.lastRelativeResidual,
-                    st.lastBackwardError);
+        std::printf(
+            "solid-app: linear solver totals: analysis %.2f s (cpu %.2f, ordering %.2f), "
+            "factorization %.2f s (cpu %.2f), solve %.2f s (cpu %.2f); factorization "
+            "memory %lld MB (estimate %lld MB), BLR %s (flops %.3g of %.3g full rank, "
+            "%d refinement steps, %d fallbacks), last checked residual %.2e (backward error "
+            "%.1e)\n",
+            st.analysisSeconds, st.analysisCpuSeconds, st.orderingSeconds, st.factorizationSeconds,
+            st.factorizationCpuSeconds, st.solveSeconds, st.solveCpuSeconds,
+            st.factorizationMemoryMb, st.estimatedMemoryMb, st.lowRankActive ? "on" : "off",
+            st.lowRankFlops, st.fullRankFlops, st.refinementSteps, st.lowRankFallbacks,
+            st.lastRelativeResidual, st.lastBackwardError);
         if (!st.lastResiduals.empty())
         {
             std::printf("solid-app: BLR residuals of the last checked solve:");

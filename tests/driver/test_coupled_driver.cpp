@@ -38,7 +38,8 @@ int worldRank()
 
 const mesh::Mesh& beamMesh()
 {
-    static mesh::Mesh mesh = [] {
+    static mesh::Mesh mesh = []
+    {
         std::string file = "/tmp/fsi-driver-beam-" + std::to_string(::getpid()) + ".msh";
         // Every rank writes its own copy under its own pid: no race.
         fsi::testing::BlockSpec spec;
@@ -135,21 +136,23 @@ std::string sharedFolder(MPI_Comm comm, const std::string& stem)
 struct RunOptions
 {
     MPI_Comm comm = MPI_COMM_WORLD;
-    std::string out;       // "" = a fresh folder, removed afterwards
+    std::string out; // "" = a fresh folder, removed afterwards
     bool restart = false;
-    double unstableStep = 0; // > 0: the fluid double returns NaN forces for larger steps
+    double unstableStep = 0;   // > 0: the fluid double returns NaN forces for larger steps
     double interfaceShift = 0; // [m] in x: the fluid interface moved away from the solid's
     double inexactness = 0;    // the fluid double's force error per unit of asked tolerance
     bool probes = false;       // reaction of the clamped end x0 and stress at the tip in history
 };
 
-CoupledResult runCoupled(const material::MaterialParameters& params, driver::CouplingParameters coupling,
-                         double totalForce, double kappa, const RunOptions& options = {})
+CoupledResult runCoupled(const material::MaterialParameters& params,
+                         driver::CouplingParameters coupling, double totalForce, double kappa,
+                         const RunOptions& options = {})
 {
     auto law = material::makeMaterial(params, material::Kinematics::SmallStrain);
     fe::StructuralSolver solid(options.comm, beamMesh(), *law, cantilever());
     // Every rank holds the double (the peer is called collectively); only rank 0's data matter.
-    auto fluid = std::make_unique<fsi::testing::SpringBackFluid>(solid.wettedNodeCoordinates(), totalForce, kappa);
+    auto fluid = std::make_unique<fsi::testing::SpringBackFluid>(solid.wettedNodeCoordinates(),
+                                                                 totalForce, kappa);
     fluid->unstableStep = options.unstableStep;
     fluid->inexactness = options.inexactness;
     fluid->shiftInterface(options.interfaceShift, 0, 0);

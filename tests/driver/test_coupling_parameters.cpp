@@ -70,7 +70,8 @@ TEST(CouplingParameters, ShippedExampleParses)
     EXPECT_DOUBLE_EQ(p.sectionAngle->liftDirection[1], -1.0);
     EXPECT_EQ(p.mapping.strategy.get<mapping::WendlandParameters>()->solver, "auto");
     EXPECT_EQ(p.mapping.strategy.get<mapping::WendlandParameters>()->directMaxPoints, 20000);
-    EXPECT_NE(p.echo().find("rbf-wendland-c2: {support_radius: 0.004, solver: auto"), std::string::npos);
+    EXPECT_NE(p.echo().find("rbf-wendland-c2: {support_radius: 0.004, solver: auto"),
+              std::string::npos);
     EXPECT_EQ(p.checkpoint.every, 1);
     EXPECT_EQ(p.checkpoint.keep, 2);
     EXPECT_EQ(p.recovery.maxRetries, 3);
@@ -92,9 +93,10 @@ TEST(CouplingParameters, BadInputNamesTheKey)
               std::string::npos);
     EXPECT_NE(errorOf(minimal + "  max_iterations: 0\n").find("max_iterations"), std::string::npos);
     // Coefficients of a strategy that is not selected.
-    const std::string nnWithRbf = "  convergence: {absolute_tolerance: 1.0e-7}\n"
-                                  "  acceleration: {type: aitken, aitken: {initial_relaxation: 0.5}}\n"
-                                  "  mapping: {type: nearest-neighbour, rbf-wendland-c2: {support_radius: 1}}\n";
+    const std::string nnWithRbf =
+        "  convergence: {absolute_tolerance: 1.0e-7}\n"
+        "  acceleration: {type: aitken, aitken: {initial_relaxation: 0.5}}\n"
+        "  mapping: {type: nearest-neighbour, rbf-wendland-c2: {support_radius: 1}}\n";
     EXPECT_NE(errorOf(nnWithRbf).find("remove the block or change type"), std::string::npos);
     // Aitken without its required omega_0.
     const std::string noOmega = "  convergence: {absolute_tolerance: 1.0e-7}\n"
@@ -102,20 +104,24 @@ TEST(CouplingParameters, BadInputNamesTheKey)
                                 "  mapping: {type: nearest-neighbour}\n";
     EXPECT_NE(errorOf(noOmega).find("initial_relaxation"), std::string::npos);
     // No tolerance at all.
-    const std::string noTolerance = "  convergence: {}\n"
-                                    "  acceleration: {type: aitken, aitken: {initial_relaxation: 0.5}}\n"
-                                    "  mapping: {type: nearest-neighbour}\n";
+    const std::string noTolerance =
+        "  convergence: {}\n"
+        "  acceleration: {type: aitken, aitken: {initial_relaxation: 0.5}}\n"
+        "  mapping: {type: nearest-neighbour}\n";
     EXPECT_NE(errorOf(noTolerance).find("coupling.convergence"), std::string::npos);
     // Time list not starting at 0.
-    EXPECT_NE(errorOf(minimal + "  time: {type: list, times: [1, 2]}\n").find("coupling.time.times"),
-              std::string::npos);
+    EXPECT_NE(
+        errorOf(minimal + "  time: {type: list, times: [1, 2]}\n").find("coupling.time.times"),
+        std::string::npos);
     // Negative timeout.
     EXPECT_NE(errorOf(minimal + "  launch: {timeout: -1}\n").find("timeout"), std::string::npos);
-    EXPECT_NE(errorOf(minimal + "  checkpoint: {keep: 0}\n").find("coupling.checkpoint.keep"), std::string::npos);
+    EXPECT_NE(errorOf(minimal + "  checkpoint: {keep: 0}\n").find("coupling.checkpoint.keep"),
+              std::string::npos);
     EXPECT_NE(errorOf(minimal + "  checkpoint: {every: -1}\n").find("every"), std::string::npos);
     EXPECT_NE(errorOf(minimal + "  recovery: {relaxation_factor: 1.5}\n").find("relaxation_factor"),
               std::string::npos);
-    EXPECT_NE(errorOf(minimal + "  recovery: {retries: 2}\n").find("unknown key 'retries'"), std::string::npos);
+    EXPECT_NE(errorOf(minimal + "  recovery: {retries: 2}\n").find("unknown key 'retries'"),
+              std::string::npos);
 }
 
 TEST(CouplingParameters, PartitionOfUnityMappingParsesWithDefaultsAndNamesBadKeys)
@@ -156,15 +162,17 @@ TEST(CouplingParameters, PartitionOfUnityMappingParsesWithDefaultsAndNamesBadKey
 // launch timeout is capped (1e10 s overflowed the comm layer's clock).
 TEST(CouplingParameters, StrategyErrorsNameTheirBlockAndKeepSmallValues)
 {
-    const std::string badRadius = "  convergence: {absolute_tolerance: 1.0e-7}\n"
-                                  "  acceleration: {type: aitken, aitken: {initial_relaxation: 0.5}}\n"
-                                  "  mapping: {type: rbf-wendland-c2, rbf-wendland-c2: {support_radius: -1.0e-7}}\n";
+    const std::string badRadius =
+        "  convergence: {absolute_tolerance: 1.0e-7}\n"
+        "  acceleration: {type: aitken, aitken: {initial_relaxation: 0.5}}\n"
+        "  mapping: {type: rbf-wendland-c2, rbf-wendland-c2: {support_radius: -1.0e-7}}\n";
     const std::string what = errorOf(badRadius);
     EXPECT_NE(what.find("mapping.rbf-wendland-c2"), std::string::npos) << what;
     EXPECT_EQ(what.find("mapping.type"), std::string::npos) << what;
-    const std::string tinyOmega = "  convergence: {absolute_tolerance: 1.0e-7}\n"
-                                  "  acceleration: {type: aitken, aitken: {initial_relaxation: -1.0e-7}}\n"
-                                  "  mapping: {type: nearest-neighbour}\n";
+    const std::string tinyOmega =
+        "  convergence: {absolute_tolerance: 1.0e-7}\n"
+        "  acceleration: {type: aitken, aitken: {initial_relaxation: -1.0e-7}}\n"
+        "  mapping: {type: nearest-neighbour}\n";
     EXPECT_NE(errorOf(tinyOmega).find("got -1e-07"), std::string::npos) << errorOf(tinyOmega);
     EXPECT_NE(errorOf(minimal + "  launch: {timeout: 1.0e10}\n").find("coupling.launch.timeout"),
               std::string::npos);

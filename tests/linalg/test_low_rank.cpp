@@ -5,10 +5,10 @@
 // distributed matrix), a too coarse BLR factor falls back to full rank, low_rank auto follows
 // low_rank_min_size; the option defaults are the documented ones and bad values are rejected
 // with one-line errors naming the config key. Nothing here is timed.
+#include "CubeMesh.hpp"
 #include "linalg/CsrPattern.hpp"
 #include "linalg/Partition.hpp"
 #include "linalg/SparseDirectSolver.hpp"
-#include "CubeMesh.hpp"
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>

@@ -111,8 +111,8 @@ Eigen::VectorXd Aitken::update(const Eigen::VectorXd& previousIterate,
             // The carried factor is kept in [min_relaxation, max_relaxation] (positive).
             omega_ = std::min(std::max(levelOmega_, params_.minRelaxation), params_.maxRelaxation);
             if (omega_ != levelOmega_)
-                note_ = "aitken: carried-over omega " + numberText(levelOmega_) +
-                        " clamped to " + numberText(omega_) + " (min_relaxation " +
+                note_ = "aitken: carried-over omega " + numberText(levelOmega_) + " clamped to " +
+                        numberText(omega_) + " (min_relaxation " +
                         numberText(params_.minRelaxation) + ", max_relaxation " +
                         numberText(params_.maxRelaxation) + ")";
         }

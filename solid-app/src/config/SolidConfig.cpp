@@ -69,27 +69,25 @@ material::MaterialParameters parseMaterial(const Block& b)
 linalg::DirectSolverOptions parseLinearSolver(const Block& b)
 {
     b.allowOnly({"verbosity", "ordering", "low_rank", "low_rank_min_size", "low_rank_tolerance",
-                 "low_rank_variant", "refinement_tolerance", "max_refinement_steps", "check_residual",
-                 "memory_relaxation", "threads"});
+                 "low_rank_variant", "refinement_tolerance", "max_refinement_steps",
+                 "check_residual", "memory_relaxation", "threads"});
     using linalg::LowRank;
     using linalg::Ordering;
     linalg::DirectSolverOptions o;
     o.verbosity = b.integer("verbosity", o.verbosity);
-    const std::string ordering =
-        b.choice("ordering", {"metis", "scotch", "ptscotch", "amd", "amf", "pord", "qamd", "auto"},
-                 "metis");
+    const std::string ordering = b.choice(
+        "ordering", {"metis", "scotch", "ptscotch", "amd", "amf", "pord", "qamd", "auto"}, "metis");
     const std::pair<const char*, Ordering> orderings[] = {
-        {"metis", Ordering::Metis},       {"scotch", Ordering::Scotch},
-        {"ptscotch", Ordering::PtScotch}, {"amd", Ordering::Amd},
-        {"amf", Ordering::Amf},           {"pord", Ordering::Pord},
-        {"qamd", Ordering::Qamd},         {"auto", Ordering::Automatic}};
+        {"metis", Ordering::Metis}, {"scotch", Ordering::Scotch}, {"ptscotch", Ordering::PtScotch},
+        {"amd", Ordering::Amd},     {"amf", Ordering::Amf},       {"pord", Ordering::Pord},
+        {"qamd", Ordering::Qamd},   {"auto", Ordering::Automatic}};
     for (const auto& [name, value] : orderings)
         if (ordering == name)
             o.ordering = static_cast<int>(value);
     // true / false read as on / off
     const std::string lowRank =
         b.choice("low_rank", {"auto", "on", "off", "true", "false"}, "auto");
-    o.lowRank = lowRank == "auto" ? LowRank::Auto
+    o.lowRank = lowRank == "auto"                        ? LowRank::Auto
                 : (lowRank == "on" || lowRank == "true") ? LowRank::On
                                                          : LowRank::Off;
     o.lowRankMinSize = b.integer("low_rank_min_size", o.lowRankMinSize);

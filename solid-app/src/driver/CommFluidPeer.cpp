@@ -23,8 +23,9 @@ CommFluidPeer::CommFluidPeer(comm::Channel& channel) : channel_(channel)
 {
     const auto& sizes = channel_.peer().interfaceSizes;
     if (sizes.size() != 2 || sizes[0] <= 0 || sizes[1] <= 0)
-        throw std::runtime_error("fluid-app announced interface sizes that are not {points > 0, faces > 0}: "
-                                 "check the interface patch of the fluid case");
+        throw std::runtime_error(
+            "fluid-app announced interface sizes that are not {points > 0, faces > 0}: "
+            "check the interface patch of the fluid case");
     const auto geometry = comm::protocol::decodeGeometry(
         channel_.receive(comm::MessageKind::InterfaceGeometry), sizes[0], sizes[1]);
     if (channel_.isRoot())
@@ -54,8 +55,9 @@ FluidResponse CommFluidPeer::solve(int level, int iteration, double time,
             command.displacements.data(), pointDisplacement.rows(), 3) = pointDisplacement;
     }
     channel_.send(comm::protocol::encode(command));
-    const auto answer = comm::protocol::decodeForces(
-        channel_.receive(comm::MessageKind::Forces), level, iteration, channel_.peer().interfaceSizes[1]);
+    const auto answer =
+        comm::protocol::decodeForces(channel_.receive(comm::MessageKind::Forces), level, iteration,
+                                     channel_.peer().interfaceSizes[1]);
     FluidResponse r;
     if (channel_.isRoot())
         r.faceForces = rows<mapping::Values>(answer.faceForces);

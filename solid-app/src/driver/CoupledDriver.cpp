@@ -140,14 +140,15 @@ struct CoupledDriver::Impl
         }
     }
 
-    std::optional<CheckpointStore::Loaded> loadCheckpoint(const CheckpointStore& store, bool restart);
+    std::optional<CheckpointStore::Loaded> loadCheckpoint(const CheckpointStore& store,
+                                                          bool restart);
     void setUp(int restartLevel);
     bool restore(const CheckpointStore::Loaded& saved, TimeSchedule& schedule);
     LevelRecord solveLevel(TimeSchedule& schedule);
     LevelAttempt attemptLevel(LevelRecord& record, bool usePredictor);
     FluidAccuracy accuracyFor(int iteration, double lastResidual, bool interfaceConverged) const;
-    FluidResponse solveFluid(const LevelRecord& record, int iteration, const FluidAccuracy& accuracy,
-                             IterationLine& line);
+    FluidResponse solveFluid(const LevelRecord& record, int iteration,
+                             const FluidAccuracy& accuracy, IterationLine& line);
     std::optional<LevelAttempt> judge(LevelRecord& record, const FluidResponse& response,
                                       const FluidAccuracy& accuracy, double firstResidual,
                                       IterationLine& line);
@@ -178,8 +179,8 @@ const std::vector<double>& CoupledDriver::acceptedTimes() const
     return impl_->acceptedTimes;
 }
 
-std::optional<CheckpointStore::Loaded> CoupledDriver::Impl::loadCheckpoint(const CheckpointStore& store,
-                                                                          bool restart)
+std::optional<CheckpointStore::Loaded>
+CoupledDriver::Impl::loadCheckpoint(const CheckpointStore& store, bool restart)
 {
     if (!restart)
         return std::nullopt;
@@ -233,8 +234,10 @@ void CoupledDriver::Impl::setUp(int restartLevel)
       << " solid wetted nodes, " << fi.points.rows() << " fluid points, " << fi.faceCentres.rows()
       << " fluid faces; set-up " << secondsSince(t0) << " s";
     log.say(s.str());
-    log.say("[mapping] points: " + mapping::assessQuality(*displacementMap, solidNodes, fi.points).toString());
-    log.say("[mapping] faces:  " + mapping::assessQuality(*forceMap, solidNodes, fi.faceCentres).toString());
+    log.say("[mapping] points: " +
+            mapping::assessQuality(*displacementMap, solidNodes, fi.points).toString());
+    log.say("[mapping] faces:  " +
+            mapping::assessQuality(*forceMap, solidNodes, fi.faceCentres).toString());
 }
 
 // Restart: the solid, the accelerator, the schedule and the run totals from the checkpoint.
@@ -246,7 +249,8 @@ bool CoupledDriver::Impl::restore(const CheckpointStore::Loaded& saved, TimeSche
     try
     {
         if (static_cast<int>(d.interfaceDisplacement.size()) != n)
-            throw std::runtime_error("the checkpoint has " + std::to_string(d.interfaceDisplacement.size() / 3) +
+            throw std::runtime_error("the checkpoint has " +
+                                     std::to_string(d.interfaceDisplacement.size() / 3) +
                                      " wetted nodes, this mesh " + std::to_string(n / 3) +
                                      " (same mesh as the checkpointed run?)");
         solid.restoreCommittedState(saved.solid);
@@ -318,14 +322,17 @@ LevelRecord CoupledDriver::Impl::solveLevel(TimeSchedule& schedule)
             solid.rejectLevel();
             cure = recovery.cure(attempt, schedule, accelerator);
             if (cure.empty())
-                log.say("[cure] " + where.str() + "no automatic cure applies to: " + attempt.diagnosis);
+                log.say("[cure] " + where.str() +
+                        "no automatic cure applies to: " + attempt.diagnosis);
         }
         if (cure.empty())
             fail(where.str() + attempt.diagnosis +
-                 (retries ? " (after " + std::to_string(retries) + " automatic retries)" : std::string()) +
+                 (retries ? " (after " + std::to_string(retries) + " automatic retries)"
+                          : std::string()) +
                  RecoveryPolicy::fixFor(attempt.outcome));
-        log.say("[cure " + std::to_string(retries + 1) + "/" + std::to_string(recovery.maxRetries()) +
-                "] " + where.str() + attempt.diagnosis + " -> " + cure);
+        log.say("[cure " + std::to_string(retries + 1) + "/" +
+                std::to_string(recovery.maxRetries()) + "] " + where.str() + attempt.diagnosis +
+                " -> " + cure);
     }
 }
 
@@ -359,8 +366,9 @@ LevelAttempt CoupledDriver::Impl::attemptLevel(LevelRecord& record, bool usePred
         const FluidResponse response = solveFluid(record, it, accuracy, line);
 
         const auto t0 = Clock::now();
-        const auto report = solid.solve({record.time, record.dt},
-                                        {std::vector<double>(nodalForce.data(), nodalForce.data() + n)});
+        const auto report =
+            solid.solve({record.time, record.dt},
+                        {std::vector<double>(nodalForce.data(), nodalForce.data() + n)});
         line.wallSolid = secondsSince(t0);
         line.newtonIterations = report.newtonIterations;
         record.newtonIterations += report.newtonIterations;
@@ -368,13 +376,16 @@ LevelAttempt CoupledDriver::Impl::attemptLevel(LevelRecord& record, bool usePred
         summary.couplingIterations += 1;
         summary.solidSeconds += line.wallSolid;
         if (!report.converged)
-            return {Outcome::SolidFailed, "coupling iteration " + std::to_string(it) +
-                                              ": the structural Newton solve failed: " + report.message, it};
+            return {Outcome::SolidFailed,
+                    "coupling iteration " + std::to_string(it) +
+                        ": the structural Newton solve failed: " + report.message,
+                    it};
         solverOutput = toVector(solid.wettedNodeDisplacements());
         if (report.loadCuts > 0)
             line.note = "[cure] solid load sub-stepping x" + std::to_string(1 << report.loadCuts);
 
-        auto outcome = judge(record, response, accuracy, it == 1 ? -1.0 : record.firstResidual, line);
+        auto outcome =
+            judge(record, response, accuracy, it == 1 ? -1.0 : record.firstResidual, line);
         log.iteration(line);
         broadcastOutcome(comm, outcome);
         if (outcome)
@@ -384,8 +395,8 @@ LevelAttempt CoupledDriver::Impl::attemptLevel(LevelRecord& record, bool usePred
     }
     MPI_Bcast(&record.residual, 1, MPI_DOUBLE, 0, comm);
     std::ostringstream s;
-    s << "did not converge in " << params.maxIterations << " coupling iterations (|r|/sqrt(n) = "
-      << record.residual << " m)";
+    s << "did not converge in " << params.maxIterations
+      << " coupling iterations (|r|/sqrt(n) = " << record.residual << " m)";
     return {Outcome::Capped, s.str(), params.maxIterations};
 }
 
@@ -402,7 +413,8 @@ FluidResponse CoupledDriver::Impl::solveFluid(const LevelRecord& record, int ite
         line.wallMapping += secondsSince(t0);
     }
     t0 = Clock::now();
-    FluidResponse response = fluid->solve(record.level, iteration, record.time, pointDisplacement, accuracy);
+    FluidResponse response =
+        fluid->solve(record.level, iteration, record.time, pointDisplacement, accuracy);
     line.wallFluid = secondsSince(t0);
     if (rank == 0)
     {
@@ -425,7 +437,8 @@ FluidResponse CoupledDriver::Impl::solveFluid(const LevelRecord& record, int ite
 // Rank 0: the convergence test of one coupling iteration and, unless the level ends here, the
 // accelerator's next iterate. Returns the level's outcome when it ends (other ranks: nullopt).
 // firstResidual: the level's first |r|/sqrt(n) (< 0 in its first iteration).
-std::optional<LevelAttempt> CoupledDriver::Impl::judge(LevelRecord& record, const FluidResponse& response,
+std::optional<LevelAttempt> CoupledDriver::Impl::judge(LevelRecord& record,
+                                                       const FluidResponse& response,
                                                        const FluidAccuracy& accuracy,
                                                        double firstResidual, IterationLine& line)
 {
@@ -440,7 +453,8 @@ std::optional<LevelAttempt> CoupledDriver::Impl::judge(LevelRecord& record, cons
     if (firstResidual < 0)
         record.firstResidual = r;
     if (!line.measure.finite)
-        return LevelAttempt{Outcome::Diverged, "diverged: the interface residual is not finite (NaN/inf)"};
+        return LevelAttempt{Outcome::Diverged,
+                            "diverged: the interface residual is not finite (NaN/inf)"};
     const bool flowFinal = accuracy.isFinal && response.converged;
     if (line.measure.converged && flowFinal)
         return LevelAttempt{Outcome::Converged, ""};
@@ -456,13 +470,15 @@ std::optional<LevelAttempt> CoupledDriver::Impl::judge(LevelRecord& record, cons
     std::string note = accelerator->lastNote();
     if (line.measure.converged)
         note += std::string(note.empty() ? "" : "; ") + "interface converged on a " +
-                (response.converged ? "loose" : "capped") + " flow: once more at the final accuracy";
+                (response.converged ? "loose" : "capped") +
+                " flow: once more at the final accuracy";
     if (!note.empty())
         line.note += (line.note.empty() ? "" : "; ") + note;
     return std::nullopt;
 }
 
-void CoupledDriver::Impl::acceptLevel(LevelRecord& record, double levelSeconds, const TimeSchedule& schedule)
+void CoupledDriver::Impl::acceptLevel(LevelRecord& record, double levelSeconds,
+                                      const TimeSchedule& schedule)
 {
     accelerator->endLevel();
     solid.acceptLevel();
@@ -471,7 +487,8 @@ void CoupledDriver::Impl::acceptLevel(LevelRecord& record, double levelSeconds, 
     const double norm = solverOutput.norm();
     record.relativeChange = norm > 0 ? (solverOutput - uLast).norm() / norm : 0.0;
     if (record.level >= 2 && dtLast > 0.0 && norm > 0)
-        record.pathError = (solverOutput - (uLast + (uLast - uBeforeLast) * (record.dt / dtLast))).norm() / norm;
+        record.pathError =
+            (solverOutput - (uLast + (uLast - uBeforeLast) * (record.dt / dtLast))).norm() / norm;
     MPI_Bcast(&record.firstResidual, 1, MPI_DOUBLE, 0, comm);
     std::string probeText;
     for (const auto& p : probes)
@@ -490,7 +507,8 @@ void CoupledDriver::Impl::acceptLevel(LevelRecord& record, double levelSeconds, 
     summary.history.push_back(record);
     summary.levels += 1;
     progress.levelDone(record.time, record.dt, record.wallSeconds);
-    const double eta = schedule.hasNext() ? progress.remaining(schedule.endTime(), schedule.maxStep()) : -1.0;
+    const double eta =
+        schedule.hasNext() ? progress.remaining(schedule.endTime(), schedule.maxStep()) : -1.0;
     log.level(record, record.probes, probeText, levelSeconds, eta);
 
     uBeforeLast = uLast;
@@ -499,7 +517,8 @@ void CoupledDriver::Impl::acceptLevel(LevelRecord& record, double levelSeconds, 
     lastFirstResidual = record.firstResidual;
 }
 
-void CoupledDriver::Impl::checkpoint(const CheckpointStore& store, const LevelRecord& record, bool last)
+void CoupledDriver::Impl::checkpoint(const CheckpointStore& store, const LevelRecord& record,
+                                     bool last)
 {
     const int every = params.checkpoint.every;
     if (every <= 0 || (record.level % every != 0 && !last))
@@ -547,8 +566,8 @@ RunSummary CoupledDriver::run()
     const auto saved = m.loadCheckpoint(store, restart_);
     m.setUp(saved ? saved->driver.level : -1);
     TimeSchedule schedule(m.params.time, m.relaxationTimes);
-    m.log.say("[driver] " + schedule.describe() + "; acceleration " + m.accelerator->name() + ", max " +
-              std::to_string(m.params.maxIterations) + " iterations per level");
+    m.log.say("[driver] " + schedule.describe() + "; acceleration " + m.accelerator->name() +
+              ", max " + std::to_string(m.params.maxIterations) + " iterations per level");
     m.log.say("[driver] " + m.forcing.describe());
     bool levelsLeft = true;
     if (saved)

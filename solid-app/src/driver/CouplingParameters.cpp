@@ -146,7 +146,8 @@ CouplingParameters CouplingParameters::parse(const config::Block& b)
     p.maxIterations = b.integer("max_iterations", p.maxIterations);
     if (p.maxIterations < 1)
         b.fail("max_iterations", "must be >= 1");
-    p.continueOnMaxIterations = b.choice("on_max_iterations", {"stop", "continue"}, "stop") == "continue";
+    p.continueOnMaxIterations =
+        b.choice("on_max_iterations", {"stop", "continue"}, "stop") == "continue";
     p.divergenceFactor = b.number("divergence_factor", p.divergenceFactor);
     if (!(p.divergenceFactor > 1))
         b.fail("divergence_factor", "must be > 1");
@@ -269,8 +270,9 @@ std::string CouplingParameters::echo() const
     if (sectionAngle)
         s << "  section_angle: {name: " << sectionAngle->name << "}\n";
     s << "  checkpoint: {every: " << checkpoint.every << ", keep: " << checkpoint.keep << "}\n"
-      << "  recovery: {max_retries: " << recovery.maxRetries << ", relaxation_factor: "
-      << recovery.relaxationFactor << ", step_factor: " << recovery.stepFactor << "}\n";
+      << "  recovery: {max_retries: " << recovery.maxRetries
+      << ", relaxation_factor: " << recovery.relaxationFactor
+      << ", step_factor: " << recovery.stepFactor << "}\n";
     return s.str();
 }
 

@@ -65,8 +65,9 @@ int runCoupled(const config::Block& root, const std::string& configFile,
         const config::SolidConfig cfg = config::SolidConfig::fromRoot(root, configFile);
         const CouplingParameters params = CouplingParameters::parse(root.block("coupling"));
         if (cfg.mesh.wetted.empty())
-            throw std::runtime_error(configFile + ": solid.mesh.wetted is required in a coupled run "
-                                                  "(the interface surface group)");
+            throw std::runtime_error(configFile +
+                                     ": solid.mesh.wetted is required in a coupled run "
+                                     "(the interface surface group)");
         const comm::LaunchOptions launch = flagLaunch ? *flagLaunch : launchFrom(params.launch);
 
         // The mesh first (no MPI): the handshake announces the wetted node count.
@@ -89,9 +90,10 @@ int runCoupled(const config::Block& root, const std::string& configFile,
                 const std::string echo = cfg.echo() + params.echo();
                 std::printf("%s", echo.c_str());
                 io::writeFileAtomically((fs::path(out) / "config.echo.yaml").string(), echo);
-                std::printf("solid-app: coupled with %s; %d nodes, %d cells, %ld wetted nodes, %d rank(s)\n",
-                            channel->peerName().c_str(), mesh.numNodes(), mesh.cells.size(), wettedNodes,
-                            channel->localSize());
+                std::printf("solid-app: coupled with %s; %d nodes, %d cells, %ld wetted nodes, %d "
+                            "rank(s)\n",
+                            channel->peerName().c_str(), mesh.numNodes(), mesh.cells.size(),
+                            wettedNodes, channel->localSize());
                 std::printf("%s\n", cfg.material.describe().c_str());
             }
             const auto law = material::makeMaterial(cfg.material, cfg.kinematics);
@@ -117,48 +119,52 @@ int runCoupled(const config::Block& root, const std::string& configFile,
 
             io::PvdSeries series((fs::path(out) / "solid.pvd").string());
             bool seriesRestored = !restart;
-            driver.onLevelAccepted([&](const LevelRecord& r) {
-                if (!seriesRestored && root)
+            driver.onLevelAccepted(
+                [&](const LevelRecord& r)
                 {
-                    // Restart: the levels before this one, whose VTU files are on disk.
-                    const auto& times = driver.acceptedTimes();
-                    for (std::size_t k = 0; k + 1 < times.size(); ++k)
+                    if (!seriesRestored && root)
                     {
-                        char name[64];
-                        std::snprintf(name, sizeof name, "solid_%05zu.vtu", k);
-                        if (fs::exists(fs::path(out) / name))
-                            series.add(times[k], name);
+                        // Restart: the levels before this one, whose VTU files are on disk.
+                        const auto& times = driver.acceptedTimes();
+                        for (std::size_t k = 0; k + 1 < times.size(); ++k)
+                        {
+                            char name[64];
+                            std::snprintf(name, sizeof name, "solid_%05zu.vtu", k);
+                            if (fs::exists(fs::path(out) / name))
+                                series.add(times[k], name);
+                        }
                     }
-                }
-                seriesRestored = true;
-                if (!cfg.output.vtu || (r.level % cfg.output.every) != 0)
-                    return;
-                std::vector<material::Vector6> nodal, cells;
-                solid.cauchyStress(nodal, cells);
-                if (!root)
-                    return;
-                char name[64];
-                std::snprintf(name, sizeof name, "solid_%05d.vtu", r.level);
-                io::writeVtu((fs::path(out) / name).string(), mesh, {&solid.displacement(), &nodal, &cells},
-                             cfg.output.binary);
-                series.add(r.time, name);
-                series.write();
-            });
+                    seriesRestored = true;
+                    if (!cfg.output.vtu || (r.level % cfg.output.every) != 0)
+                        return;
+                    std::vector<material::Vector6> nodal, cells;
+                    solid.cauchyStress(nodal, cells);
+                    if (!root)
+                        return;
+                    char name[64];
+                    std::snprintf(name, sizeof name, "solid_%05d.vtu", r.level);
+                    io::writeVtu((fs::path(out) / name).string(), mesh,
+                                 {&solid.displacement(), &nodal, &cells}, cfg.output.binary);
+                    series.add(r.time, name);
+                    series.write();
+                });
             const RunSummary s = driver.run();
             if (root)
             {
                 char row[512];
-                std::snprintf(row, sizeof row,
-                              "levels,coupling_iterations,fluid_iterations,factorizations,wall_s,fluid_s,"
-                              "solid_s,mapping_s\n%d,%d,%d,%d,%.3f,%.3f,%.3f,%.3f\n",
-                              s.levels, s.couplingIterations, s.fluidIterations, s.factorizations,
-                              s.wallSeconds, s.fluidSeconds, s.solidSeconds, s.mappingSeconds);
+                std::snprintf(
+                    row, sizeof row,
+                    "levels,coupling_iterations,fluid_iterations,factorizations,wall_s,fluid_s,"
+                    "solid_s,mapping_s\n%d,%d,%d,%d,%.3f,%.3f,%.3f,%.3f\n",
+                    s.levels, s.couplingIterations, s.fluidIterations, s.factorizations,
+                    s.wallSeconds, s.fluidSeconds, s.solidSeconds, s.mappingSeconds);
                 io::writeFileAtomically((fs::path(out) / "summary.csv").string(), row);
-                std::printf("solid-app: done, %d levels, %d coupling iterations, %d fluid iterations, "
-                            "%d factorizations; wall %.1f s (fluid %.1f, solid %.1f, mapping %.2f); "
-                            "output in %s\n",
-                            s.levels, s.couplingIterations, s.fluidIterations, s.factorizations,
-                            s.wallSeconds, s.fluidSeconds, s.solidSeconds, s.mappingSeconds, out.c_str());
+                std::printf(
+                    "solid-app: done, %d levels, %d coupling iterations, %d fluid iterations, "
+                    "%d factorizations; wall %.1f s (fluid %.1f, solid %.1f, mapping %.2f); "
+                    "output in %s\n",
+                    s.levels, s.couplingIterations, s.fluidIterations, s.factorizations,
+                    s.wallSeconds, s.fluidSeconds, s.solidSeconds, s.mappingSeconds, out.c_str());
             }
         }
         channel->close();

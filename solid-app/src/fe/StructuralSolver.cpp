@@ -188,7 +188,8 @@ StructuralSolver::StructuralSolver(MPI_Comm comm, const mesh::Mesh& mesh,
     u_.assign(nDofs, 0.0);
     uCommitted_ = u_;
     fextCommitted_.assign(nDofs, 0.0);
-    linearProblem_ = problem_.kinematics == material::Kinematics::SmallStrain && law_.isLinearInStrain();
+    linearProblem_ =
+        problem_.kinematics == material::Kinematics::SmallStrain && law_.isLinearInStrain();
     fintAtU_ = fextAtU_ = fintCommitted_ = fextCommitted_;
 }
 
@@ -448,9 +449,10 @@ bool StructuralSolver::newton(const std::vector<double>& fext, double factor,
         if (it >= nw.maxIterations)
         {
             char text[160];
-            std::snprintf(text, sizeof text,
-                          "Newton stalled: %d iterations, residual %.3e N above the tolerance %.3e N",
-                          it, norm, nw.residualTolerance * ref + nw.absoluteTolerance);
+            std::snprintf(
+                text, sizeof text,
+                "Newton stalled: %d iterations, residual %.3e N above the tolerance %.3e N", it,
+                norm, nw.residualTolerance * ref + nw.absoluteTolerance);
             report.message = text;
             return false;
         }
@@ -751,7 +753,8 @@ CommittedState StructuralSolver::committedState() const
 
 void StructuralSolver::restoreCommittedState(const std::vector<CommittedState>& parts)
 {
-    const auto fail = [](const std::string& why) {
+    const auto fail = [](const std::string& why)
+    {
         throw std::runtime_error("restart: the saved solid state does not fit: " + why +
                                  " (same mesh and material as the checkpointed run?)");
     };
@@ -765,8 +768,8 @@ void StructuralSolver::restoreCommittedState(const std::vector<CommittedState>& 
     {
         const auto& p = parts[r];
         if (p.displacement.size() != nDofs || p.externalForces.size() != nDofs)
-            fail("displacement of " + std::to_string(p.displacement.size() / 3) + " nodes, mesh has " +
-                 std::to_string(nDofs / 3));
+            fail("displacement of " + std::to_string(p.displacement.size() / 3) +
+                 " nodes, mesh has " + std::to_string(nDofs / 3));
         std::size_t offset = 0;
         for (int c : p.cells)
         {
@@ -784,9 +787,11 @@ void StructuralSolver::restoreCommittedState(const std::vector<CommittedState>& 
         const int c = ownCells_[k];
         if (where[c].first < 0)
             fail("cell " + std::to_string(c) + " missing");
-        const std::size_t count = static_cast<std::size_t>(pointOffset_[k + 1] - pointOffset_[k]) * hs;
+        const std::size_t count =
+            static_cast<std::size_t>(pointOffset_[k + 1] - pointOffset_[k]) * hs;
         const double* from = parts[where[c].first].history.data() + where[c].second;
-        std::copy(from, from + count, committedHistory_.begin() + static_cast<std::ptrdiff_t>(pointOffset_[k] * hs));
+        std::copy(from, from + count,
+                  committedHistory_.begin() + static_cast<std::ptrdiff_t>(pointOffset_[k] * hs));
     }
     linearUpdateReady_ = false;
     uCommitted_ = u_ = parts[0].displacement;

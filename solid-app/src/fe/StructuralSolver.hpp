@@ -16,9 +16,10 @@
 //
 // Level semantics: solve() may be called any number of times for the same level; each call
 // starts from the last converged solution (warm start; for a linear problem -- small strain and
-// a law linear in the strain -- a re-solve with new loads only is a single back-substitution) and evaluates the material with the
-// history committed by the last acceptLevel(). acceptLevel() requires the last solve to have
-// converged (throws otherwise). Loads given to solve() REPLACE those of the previous call.
+// a law linear in the strain -- a re-solve with new loads only is a single back-substitution) and
+// evaluates the material with the history committed by the last acceptLevel(). acceptLevel()
+// requires the last solve to have converged (throws otherwise). Loads given to solve() REPLACE
+// those of the previous call.
 #pragma once
 #include "fe/ElementKernel.hpp"
 #include "fe/Settings.hpp"
@@ -56,10 +57,10 @@ struct ProblemDefinition
 {
     material::Kinematics kinematics = material::Kinematics::SmallStrain;
     Formulation formulation = Formulation::Displacement; // volumetric treatment of hexahedra
-    double density = 0.0;                              // [kg/m^3]
-    Eigen::Vector3d gravity = Eigen::Vector3d::Zero(); // [m/s^2]
-    std::vector<std::string> clamped;                  // all dofs fixed
-    std::string wetted;                                // interface surface ("" = none)
+    double density = 0.0;                                // [kg/m^3]
+    Eigen::Vector3d gravity = Eigen::Vector3d::Zero();   // [m/s^2]
+    std::vector<std::string> clamped;                    // all dofs fixed
+    std::string wetted;                                  // interface surface ("" = none)
     std::vector<PrescribedDisplacement> displacements;
     std::vector<SurfaceTraction> tractions;
     std::vector<SurfaceForce> forces;
@@ -86,7 +87,7 @@ struct CommittedState
     std::vector<double> displacement;   // 3 per node [m]
     std::vector<double> externalForces; // 3 per node [N], loads of the last accepted level
     double loadFactor = 0.0;
-    std::vector<int> cells;             // global cell ids owned by the rank that saved it
+    std::vector<int> cells; // global cell ids owned by the rank that saved it
     std::vector<double> history;
 };
 

@@ -31,8 +31,8 @@ extern "C" void scotchfgraphbuild_(double* grafdat, void* baseval, void* vertnbr
                                    void* edgetab, void* edlotab, int* revaptr)
 {
     using Init = void (*)(double*, int*);
-    using Build = void (*)(double*, void*, void*, void*, void*, void*, void*, void*, void*, void*,
-                           int*);
+    using Build =
+        void (*)(double*, void*, void*, void*, void*, void*, void*, void*, void*, void*, int*);
     static const Init init = reinterpret_cast<Init>(dlsym(RTLD_NEXT, "scotchfgraphinit_"));
     static const Build build = reinterpret_cast<Build>(dlsym(RTLD_NEXT, "scotchfgraphbuild_"));
     if (!init || !build)
@@ -42,8 +42,8 @@ extern "C" void scotchfgraphbuild_(double* grafdat, void* baseval, void* vertnbr
     }
     int status = 0;
     init(grafdat, &status);
-    build(grafdat, baseval, vertnbr, verttab, vendtab, velotab, vlbltab, edgenbr, edgetab,
-          edlotab, revaptr);
+    build(grafdat, baseval, vertnbr, verttab, vendtab, velotab, vlbltab, edgenbr, edgetab, edlotab,
+          revaptr);
 }
 #endif
 
@@ -171,7 +171,10 @@ std::vector<int> metisOrdering(int n, const std::vector<int>& rows, const std::v
         return true;
     };
     auto linked = [&](int i, int j)
-    { return std::binary_search(adjacency.begin() + start[i], adjacency.begin() + start[i] + degree[i], j); };
+    {
+        return std::binary_search(adjacency.begin() + start[i],
+                                  adjacency.begin() + start[i] + degree[i], j);
+    };
     std::vector<int> super(n), superStart{0};
     int count = 0;
     for (int i = 0; i < n; ++i)
@@ -337,8 +340,9 @@ std::optional<DirectSolverOptions::Error> DirectSolverOptions::firstError() cons
         return Error{"low_rank", std::to_string(static_cast<int>(lowRank)),
                      "use auto (default), on or off"};
     if (lowRankMinSize < 1)
-        return Error{"low_rank_min_size", std::to_string(lowRankMinSize),
-                     "give the smallest matrix size (rows) for low_rank auto, >= 1 (default 100000)"};
+        return Error{
+            "low_rank_min_size", std::to_string(lowRankMinSize),
+            "give the smallest matrix size (rows) for low_rank auto, >= 1 (default 100000)"};
     if (!(lowRankTolerance >= 1e-16 && lowRankTolerance <= 1e-3))
         return Error{"low_rank_tolerance", text(lowRankTolerance),
                      "give the BLR threshold in [1e-16, 1e-3] (default 1e-9)"};
@@ -353,7 +357,8 @@ std::optional<DirectSolverOptions::Error> DirectSolverOptions::firstError() cons
                      "give BLAS threads per MPI rank >= 1 (default 1), or 0 to keep the "
                      "environment's"};
     if (!(reuseTolerance > 0.0 && reuseTolerance < 1.0))
-        return Error{"reuse_tolerance", text(reuseTolerance), "give a value in (0, 1) (default 1e-10)"};
+        return Error{"reuse_tolerance", text(reuseTolerance),
+                     "give a value in (0, 1) (default 1e-10)"};
     if (reuseMaxIterations < 1)
         return Error{"reuse_max_iterations", std::to_string(reuseMaxIterations),
                      "give >= 1 (default 25)"};
@@ -377,15 +382,21 @@ std::string describe(const DirectSolverOptions& o)
                                "metis", "qamd", "auto", "ptscotch"};
     s << "ordering " << (o.ordering >= 0 && o.ordering <= 8 ? orderings[o.ordering] : "?")
       << ", low_rank "
-      << (o.lowRank == LowRank::On ? "on" : o.lowRank == LowRank::Off ? "off" : "auto");
+      << (o.lowRank == LowRank::On    ? "on"
+          : o.lowRank == LowRank::Off ? "off"
+                                      : "auto");
     if (o.lowRank != LowRank::Off)
-        s << " (" << (o.lowRank == LowRank::Auto ? ">= " + std::to_string(o.lowRankMinSize) + " rows, " : "")
+        s << " ("
+          << (o.lowRank == LowRank::Auto ? ">= " + std::to_string(o.lowRankMinSize) + " rows, "
+                                         : "")
           << "tolerance " << o.lowRankTolerance << ", " << (o.lowRankUcfs ? "ucfs" : "ufsc")
           << "; refinement to " << o.refinementTolerance << " in <= " << o.maxRefinementSteps
           << " steps)";
     s << ", memory_relaxation " << o.memoryRelaxationPercent << " %, threads "
-      << (o.threadsPerRank > 0 ? std::to_string(o.threadsPerRank) : "from environment")
-      << ", " << (o.positiveDefinite ? "SPD" : o.symmetric ? "symmetric" : "unsymmetric");
+      << (o.threadsPerRank > 0 ? std::to_string(o.threadsPerRank) : "from environment") << ", "
+      << (o.positiveDefinite ? "SPD"
+          : o.symmetric      ? "symmetric"
+                             : "unsymmetric");
     return s.str();
 }
 
@@ -431,10 +442,10 @@ SparseDirectSolver::SparseDirectSolver(MPI_Comm comm, DirectSolverOptions option
     handle_->icntl(29) = 1;                // PT-SCOTCH for the parallel analysis
     handle_->icntl(7) = metis ? 1 : parallel ? 7 : options.ordering; // METIS: ours, PERM_IN
     handle_->icntl(14) = options.memoryRelaxationPercent;
-    handle_->icntl(22) = 0;      // in-core (no out-of-core factors)
-    handle_->icntl(24) = 1;      // null pivot detection: singular -> INFOG(28) > 0
-    handle_->cntl(3) = 1e-12;    // |pivot row| <= 1e-12 ||A|| counts as null
-    handle_->icntl(35) = 0;      // BLR: decided per analysis (analyse())
+    handle_->icntl(22) = 0;   // in-core (no out-of-core factors)
+    handle_->icntl(24) = 1;   // null pivot detection: singular -> INFOG(28) > 0
+    handle_->cntl(3) = 1e-12; // |pivot row| <= 1e-12 ||A|| counts as null
+    handle_->icntl(35) = 0;   // BLR: decided per analysis (analyse())
     handle_->icntl(36) = options.lowRankUcfs ? 1 : 0;
     handle_->cntl(7) = options.lowRankTolerance;
 }
@@ -550,10 +561,9 @@ void SparseDirectSolver::analyse()
             handle_->permutation = metisOrdering(n_, allRows, allCols);
         stats_.orderingSeconds += wallSeconds() - t0;
     }
-    const bool lowRank =
-        !lowRankDisabled_ && mumpsHasScotch() &&
-        (options_.lowRank == LowRank::On ||
-         (options_.lowRank == LowRank::Auto && n_ >= options_.lowRankMinSize));
+    const bool lowRank = !lowRankDisabled_ && mumpsHasScotch() &&
+                         (options_.lowRank == LowRank::On ||
+                          (options_.lowRank == LowRank::Auto && n_ >= options_.lowRankMinSize));
     handle_->icntl(35) = lowRank ? 2 : 0;
     id.n = n_;
     id.nnz_loc = static_cast<MUMPS_INT8>(rows_.size());
@@ -598,10 +608,9 @@ void SparseDirectSolver::factorizeNumerically()
     factorEntries_ = handle_->infog(29) >= 0 ? handle_->infog(29) : -1000000LL * handle_->infog(29);
     stats_.lowRankActive = handle_->icntl(35) != 0;
     stats_.factorEntries = factorEntries_;
-    stats_.lowRankFactorEntries =
-        !stats_.lowRankActive ? 0
-        : handle_->infog(35) >= 0 ? handle_->infog(35)
-                                  : -1000000LL * handle_->infog(35);
+    stats_.lowRankFactorEntries = !stats_.lowRankActive     ? 0
+                                  : handle_->infog(35) >= 0 ? handle_->infog(35)
+                                                            : -1000000LL * handle_->infog(35);
     stats_.fullRankFlops = handle_->rinfog(3);
     stats_.lowRankFlops = stats_.lowRankActive ? handle_->rinfog(14) : 0.0;
     stats_.maxRankMemoryMb = handle_->infog(18);
@@ -695,15 +704,12 @@ bool SparseDirectSolver::refine(const std::vector<double>& b, std::vector<double
     // (normwise backward error at the level of a backward-stable full-rank solve), which no
     // refinement can lower further
     auto converged = [&](double relative)
-    {
-        return relative <= options_.refinementTolerance ||
-               backwardError <= kRoundingBackwardError;
-    };
+    { return relative <= options_.refinementTolerance || backwardError <= kRoundingBackwardError; };
     double relative = residualNorm();
     stats_.lastResiduals.assign(1, relative);
     stats_.lastBackwardErrors.assign(1, backwardError);
-    for (int step = 0; step < options_.maxRefinementSteps && !converged(relative) &&
-                       std::isfinite(relative);
+    for (int step = 0;
+         step < options_.maxRefinementSteps && !converged(relative) && std::isfinite(relative);
          ++step)
     {
         std::vector<double> z = r;
@@ -746,7 +752,8 @@ bool SparseDirectSolver::solveWithStaleFactor(std::vector<double>& b)
 {
     const bool root = rankOf(comm_) == 0;
     std::vector<double> x(n_, 0.0), r, z, p(n_, 0.0), q;
-    auto dot = [&](const std::vector<double>& u, const std::vector<double>& v) {
+    auto dot = [&](const std::vector<double>& u, const std::vector<double>& v)
+    {
         double s = 0.0;
         if (root)
             for (int i = 0; i < n_; ++i)

@@ -48,10 +48,10 @@ constexpr double kRoundingBackwardError = 1e-14;
 // Block low-rank (BLR) factorization, MUMPS ICNTL(35).
 enum class LowRank : int
 {
-    Off = 0,  // full-rank factorization (ICNTL(35) = 0)
-    On = 1,   // BLR factorization and solve (ICNTL(35) = 2)
-    Auto = 2  // On when the matrix has at least lowRankMinSize rows (and mumpsHasScotch()),
-              // Off below
+    Off = 0, // full-rank factorization (ICNTL(35) = 0)
+    On = 1,  // BLR factorization and solve (ICNTL(35) = 2)
+    Auto = 2 // On when the matrix has at least lowRankMinSize rows (and mumpsHasScotch()),
+             // Off below
 };
 
 // Every field's default is the documented one (config/solid.example.yaml, linear_solver block;
@@ -90,7 +90,7 @@ struct DirectSolverOptions
     // refactorAfterIterations (the factor is then refreshed for the next solves). Pays when the
     // matrix changes little between factorizations (a viscoelastic tangent whose dt changes).
     bool reuseFactorization = false;
-    double reuseTolerance = 1e-10;    // |b - A x| <= tol |b|
+    double reuseTolerance = 1e-10; // |b - A x| <= tol |b|
     int reuseMaxIterations = 25;
     int refactorAfterIterations = 12;
 
@@ -111,21 +111,21 @@ struct DirectSolverStatistics
 {
     double analysisSeconds = 0.0, factorizationSeconds = 0.0, solveSeconds = 0.0;
     double analysisCpuSeconds = 0.0, factorizationCpuSeconds = 0.0, solveCpuSeconds = 0.0;
-    double orderingSeconds = 0.0;       // part of analysisSeconds: this wrapper's METIS (rank 0)
-    long long estimatedMemoryMb = 0;    // INFOG(17): total over ranks, full-rank estimate
+    double orderingSeconds = 0.0;        // part of analysisSeconds: this wrapper's METIS (rank 0)
+    long long estimatedMemoryMb = 0;     // INFOG(17): total over ranks, full-rank estimate
     long long factorizationMemoryMb = 0; // INFOG(19): total over ranks, used by the factorization
-    long long maxRankMemoryMb = 0;      // INFOG(18): largest rank
-    double fullRankFlops = 0.0;         // RINFOG(3): elimination flops of a full-rank factor
-                                        // (after analysis: the estimate RINFOG(1))
-    double lowRankFlops = 0.0;          // RINFOG(14): flops of the BLR factorization (0: off)
-    bool lowRankActive = false;         // the last factorization used BLR
-    long long factorEntries = 0;        // INFOG(29): entries of the full-rank factor
-    long long lowRankFactorEntries = 0; // INFOG(35): entries kept by BLR (0: off)
-    int lowRankFallbacks = 0;           // BLR solves that missed the tolerance -> full rank
-    int refinementSteps = 0;            // total refinement steps over all solves
-    double lastRelativeResidual = -1.0; // |b - A x| / |b| of the last checked solve (-1: none)
-    std::vector<double> lastResiduals;  // the last checked solve: before and after each step
-    double lastBackwardError = -1.0;    // |b - A x|_inf / (|A|_inf |x|_inf + |b|_inf), last
+    long long maxRankMemoryMb = 0;       // INFOG(18): largest rank
+    double fullRankFlops = 0.0;          // RINFOG(3): elimination flops of a full-rank factor
+                                         // (after analysis: the estimate RINFOG(1))
+    double lowRankFlops = 0.0;           // RINFOG(14): flops of the BLR factorization (0: off)
+    bool lowRankActive = false;          // the last factorization used BLR
+    long long factorEntries = 0;         // INFOG(29): entries of the full-rank factor
+    long long lowRankFactorEntries = 0;  // INFOG(35): entries kept by BLR (0: off)
+    int lowRankFallbacks = 0;            // BLR solves that missed the tolerance -> full rank
+    int refinementSteps = 0;             // total refinement steps over all solves
+    double lastRelativeResidual = -1.0;  // |b - A x| / |b| of the last checked solve (-1: none)
+    std::vector<double> lastResiduals;   // the last checked solve: before and after each step
+    double lastBackwardError = -1.0;     // |b - A x|_inf / (|A|_inf |x|_inf + |b|_inf), last
     std::vector<double> lastBackwardErrors; // the same, before and after each step
 };
 
@@ -238,7 +238,7 @@ private:
     bool refreshFactor_ = false; // the last CG needed many iterations: factorize next time
     int negativePivots_ = 0;
     long long factorEntries_ = 0;
-    bool matrixNormStale_ = true;  // |A|_inf for the backward error (refine)
+    bool matrixNormStale_ = true; // |A|_inf for the backward error (refine)
     double matrixNorm_ = 0.0;
     bool lowRankDisabled_ = false; // a BLR solve missed the tolerance: full rank from then on
     DirectSolverStatistics stats_;
