@@ -226,7 +226,9 @@ void Foam::fluidSolidCoupling::answerSolve
 
     fsi::fluid::ForceReport report;
     const vectorField f(faceForces(patchi_));
+    const clockTime gather;
     report.faceForces = gatherFaceForces(f);
+    exchangeSeconds_ += gather.elapsedTime();
     report.simpleIterations = r.iterations;
     report.residuals = {r.residualU, r.residualP};
     report.converged = r.converged;
@@ -385,7 +387,10 @@ int Foam::fluidSolidCoupling::runCoupled
     const clockTime wall;
     while (true)
     {
-        const Command c = broadcastCommand(transport_->receive());
+        const Command received = transport_->receive();
+        const clockTime scatter;
+        const Command c = broadcastCommand(received);
+        exchangeSeconds_ = scatter.elapsedTime();
         switch (c.kind)
         {
             case CommandKind::solve:

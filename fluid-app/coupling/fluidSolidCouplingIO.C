@@ -33,7 +33,7 @@ void Foam::fluidSolidCoupling::openCouplingLogs(const bool restart)
     {
         logFile_()
             << "step,iteration,simpleIterations,converged,residualU,residualP,"
-            << "Fx,Fy,Fz,maxDisplacement,wall_s" << endl;
+            << "Fx,Fy,Fz,maxDisplacement,wall_s,exchange_s" << endl;
     }
     if (!restart || !isFile(logDir()/"accepted.csv"))
     {
@@ -57,7 +57,7 @@ void Foam::fluidSolidCoupling::logSolve
             << solve.step << ',' << solve.iteration << ',' << r.iterations << ','
             << int(r.converged) << ',' << r.residualU << ',' << r.residualP << ','
             << total.x() << ',' << total.y() << ',' << total.z() << ','
-            << maxDisplacement << ',' << wallSeconds << endl;
+            << maxDisplacement << ',' << wallSeconds << ',' << exchangeSeconds_ << endl;
     }
 }
 
