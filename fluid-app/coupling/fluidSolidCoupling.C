@@ -135,42 +135,49 @@ Foam::fluidSolidCoupling::~fluidSolidCoupling() = default;
 fsi::fluid::Command Foam::fluidSolidCoupling::broadcastCommand
 (
     const fsi::fluid::Command& masterCommand
-) const
+)
 {
     fsi::fluid::Command c = masterCommand;
-    if (!Pstream::parRun())
+    label nValues = label(c.displacements.size());
+    if (Pstream::parRun())
     {
-        return c;
+        label kind = label(c.kind), step = c.step, iteration = c.iteration;
+        label accuracyGiven = c.accuracyGiven, minIterations = c.minIterations;
+        scalar time = c.time, forceTolerance = c.forceTolerance, residualDrop = c.residualDrop;
+        string reason(c.reason);
+        Pstream::scatter(kind);
+        Pstream::scatter(step);
+        Pstream::scatter(iteration);
+        Pstream::scatter(time);
+        Pstream::scatter(nValues);
+        Pstream::scatter(reason);
+        Pstream::scatter(accuracyGiven);
+        Pstream::scatter(minIterations);
+        Pstream::scatter(forceTolerance);
+        Pstream::scatter(residualDrop);
+        c.accuracyGiven = accuracyGiven;
+        c.minIterations = minIterations;
+        c.forceTolerance = forceTolerance;
+        c.residualDrop = residualDrop;
+        c.kind = fsi::fluid::CommandKind(kind);
+        c.step = step;
+        c.iteration = iteration;
+        c.time = time;
+        c.reason = reason;
     }
-    label kind = label(c.kind), step = c.step, iteration = c.iteration;
-    label accuracyGiven = c.accuracyGiven, minIterations = c.minIterations;
-    scalar time = c.time, forceTolerance = c.forceTolerance, residualDrop = c.residualDrop;
-    scalarList disp(c.displacements.size());
-    forAll(disp, i)
+    if (c.kind == fsi::fluid::CommandKind::solve)
     {
-        disp[i] = c.displacements[i];
+        if (nValues != 3*nGlobalPoints_)
+        {
+            failWith
+            (
+                "SOLVE carried " + Foam::name(nValues/3)
+              + " interface displacements, the fluid interface has "
+              + Foam::name(nGlobalPoints_) + " points"
+            );
+        }
+        c.displacements = distributeDisplacements(c.displacements);
     }
-    string reason(c.reason);
-    Pstream::scatter(kind);
-    Pstream::scatter(step);
-    Pstream::scatter(iteration);
-    Pstream::scatter(time);
-    Pstream::scatter(disp);
-    Pstream::scatter(reason);
-    Pstream::scatter(accuracyGiven);
-    Pstream::scatter(minIterations);
-    Pstream::scatter(forceTolerance);
-    Pstream::scatter(residualDrop);
-    c.accuracyGiven = accuracyGiven;
-    c.minIterations = minIterations;
-    c.forceTolerance = forceTolerance;
-    c.residualDrop = residualDrop;
-    c.kind = fsi::fluid::CommandKind(kind);
-    c.step = step;
-    c.iteration = iteration;
-    c.time = time;
-    c.displacements.assign(disp.begin(), disp.end());
-    c.reason = reason;
     return c;
 }
 

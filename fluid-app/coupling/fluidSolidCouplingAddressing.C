@@ -4,6 +4,7 @@
 
 #include "labelIOList.H"
 #include "ListOps.H"
+#include "PstreamBuffers.H"
 
 #include <algorithm>
 
@@ -89,6 +90,62 @@ void Foam::fluidSolidCoupling::buildGlobalOrdering()
             << " undecomposed mesh (faceProcAddressing); re-run decomposePar"
             << exit(FatalError);
     }
+
+    // Every rank's lists on the master, once: it sends each rank its own displacements and
+    // places the gathered forces (the lists never change during a run).
+    procPointToGlobal_.setSize(Pstream::nProcs());
+    procFaceToGlobal_.setSize(Pstream::nProcs());
+    procPointToGlobal_[Pstream::myProcNo()] = pointToGlobal_;
+    procFaceToGlobal_[Pstream::myProcNo()] = faceToGlobal_;
+    Pstream::gatherList(procPointToGlobal_);
+    Pstream::gatherList(procFaceToGlobal_);
+}
+
+
+std::vector<double> Foam::fluidSolidCoupling::distributeDisplacements
+(
+    const std::vector<double>& globalDisplacement
+) const
+{
+    // The displacements of `ids` (global point numbers) out of the global array, flat xyz.
+    const auto pick = [&globalDisplacement](const labelList& ids)
+    {
+        scalarList part(3*ids.size());
+        forAll(ids, i)
+        {
+            for (direction c = 0; c < 3; ++c)
+            {
+                part[3*i + c] = globalDisplacement[3*ids[i] + c];
+            }
+        }
+        return part;
+    };
+
+    scalarList local;
+    if (!Pstream::parRun())
+    {
+        local = pick(pointToGlobal_);
+    }
+    else
+    {
+        PstreamBuffers buffers(Pstream::commsTypes::nonBlocking);
+        if (Pstream::master())
+        {
+            for (label proci = 1; proci < Pstream::nProcs(); ++proci)
+            {
+                UOPstream toProc(proci, buffers);
+                toProc << pick(procPointToGlobal_[proci]);
+            }
+            local = pick(pointToGlobal_);
+        }
+        buffers.finishedSends();
+        if (!Pstream::master())
+        {
+            UIPstream fromMaster(Pstream::masterNo(), buffers);
+            fromMaster >> local;
+        }
+    }
+    return std::vector<double>(local.begin(), local.end());
 }
 
 
@@ -144,11 +201,9 @@ std::vector<double> Foam::fluidSolidCoupling::gatherFaceForces
 ) const
 {
     const label nProcs = Pstream::nProcs(), me = Pstream::myProcNo();
-    List<labelList> fIds(nProcs);
+    const List<labelList>& fIds = procFaceToGlobal_; // on the master
     List<vectorField> f(nProcs);
-    fIds[me] = faceToGlobal_;
     f[me] = localForces;
-    Pstream::gatherList(fIds);
     Pstream::gatherList(f);
 
     std::vector<double> out;

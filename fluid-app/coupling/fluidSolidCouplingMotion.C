@@ -12,26 +12,16 @@
 
 void Foam::fluidSolidCoupling::moveInterface
 (
-    const std::vector<double>& globalDisplacement
+    const std::vector<double>& localDisplacement
 )
 {
-    if (label(globalDisplacement.size()) != 3*nGlobalPoints_)
-    {
-        failWith
-        (
-            "SOLVE carried " + Foam::name(label(globalDisplacement.size()/3))
-          + " interface displacements, the fluid interface has "
-          + Foam::name(nGlobalPoints_) + " points"
-        );
-    }
     forAll(displacement_, i)
     {
-        const label g = pointToGlobal_[i];
         displacement_[i] = vector
         (
-            globalDisplacement[3*g],
-            globalDisplacement[3*g + 1],
-            globalDisplacement[3*g + 2]
+            localDisplacement[3*i],
+            localDisplacement[3*i + 1],
+            localDisplacement[3*i + 2]
         );
     }
 
