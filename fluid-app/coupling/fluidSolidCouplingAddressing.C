@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// fluid-app: the interface addressing: a global order of the interface points and faces, gathers to the master (see fluidSolidCoupling.H).
+// fluid-app: the interface addressing (see fluidSolidCoupling.H): a global order of the
+// interface points and faces, the gathers to the master and the per-rank displacements.
 #include "fluidSolidCoupling.H"
 
 #include "labelIOList.H"

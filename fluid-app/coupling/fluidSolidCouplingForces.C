@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// fluid-app: interface forces: per face, totals, and the check against functionObjects::forces (see fluidSolidCoupling.H).
+// fluid-app: interface forces (see fluidSolidCoupling.H): per face, totals, and the check
+// against functionObjects::forces.
 #include "fluidSolidCoupling.H"
 
 #include "forces.H"
