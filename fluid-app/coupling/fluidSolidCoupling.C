@@ -211,7 +211,8 @@ void Foam::fluidSolidCoupling::answerSolve
     const SteadySolver& solve,
     const SolveControls& own,
     const fsi::fluid::Command& c,
-    const scalar wallSeconds
+    const scalar wallSeconds,
+    const scalar scatterSeconds
 )
 {
     Info<< "fsi: SOLVE step " << c.step << " iteration " << c.iteration << endl;
@@ -235,7 +236,7 @@ void Foam::fluidSolidCoupling::answerSolve
     const vectorField f(faceForces(patchi_));
     const clockTime gather;
     report.faceForces = gatherFaceForces(f);
-    exchangeSeconds_ += gather.elapsedTime();
+    const scalar exchangeSeconds = scatterSeconds + gather.elapsedTime();
     report.simpleIterations = r.iterations;
     report.residuals = {r.residualU, r.residualP};
     report.converged = r.converged;
@@ -250,7 +251,7 @@ void Foam::fluidSolidCoupling::answerSolve
         "interfaceForces_" + Foam::name(c.step) + "_" + Foam::name(c.iteration) + ".csv",
         report.faceForces, nGlobalFaces_, "i,fx,fy,fz"
     );
-    logSolve(c, r, total, gMax(mag(displacement_)()), wallSeconds);
+    logSolve(c, r, total, gMax(mag(displacement_)()), wallSeconds, exchangeSeconds);
     transport_->sendForces(c, report);
 }
 
@@ -397,11 +398,11 @@ int Foam::fluidSolidCoupling::runCoupled
         const Command received = transport_->receive();
         const clockTime scatter;
         const Command c = broadcastCommand(received);
-        exchangeSeconds_ = scatter.elapsedTime();
+        const scalar scatterSeconds = scatter.elapsedTime();
         switch (c.kind)
         {
             case CommandKind::solve:
-                answerSolve(solve, own, c, wall.elapsedTime());
+                answerSolve(solve, own, c, wall.elapsedTime(), scatterSeconds);
                 break;
             case CommandKind::accept:
                 acceptLevel(c);

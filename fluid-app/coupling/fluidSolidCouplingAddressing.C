@@ -19,32 +19,28 @@ void Foam::fluidSolidCoupling::buildGlobalOrdering()
     labelList faceIds(identity(pp.size(), pp.start()));
     if (Pstream::parRun())
     {
-        const labelIOList pointAddr
-        (
-            IOobject
+        // decomposePar's addressing of this processor's mesh (constant/polyMesh)
+        const auto procAddressing = [this](const word& name)
+        {
+            return labelList
             (
-                "pointProcAddressing",
-                mesh_.facesInstance(),
-                polyMesh::meshSubDir,
-                mesh_,
-                IOobject::MUST_READ,
-                IOobject::NO_WRITE,
-                false
-            )
-        );
-        const labelIOList faceAddr
-        (
-            IOobject
-            (
-                "faceProcAddressing",
-                mesh_.facesInstance(),
-                polyMesh::meshSubDir,
-                mesh_,
-                IOobject::MUST_READ,
-                IOobject::NO_WRITE,
-                false
-            )
-        );
+                labelIOList
+                (
+                    IOobject
+                    (
+                        name,
+                        mesh_.facesInstance(),
+                        polyMesh::meshSubDir,
+                        mesh_,
+                        IOobject::MUST_READ,
+                        IOobject::NO_WRITE,
+                        false
+                    )
+                )
+            );
+        };
+        const labelList pointAddr(procAddressing("pointProcAddressing"));
+        const labelList faceAddr(procAddressing("faceProcAddressing"));
         forAll(meshPoints, i)
         {
             pointIds[i] = pointAddr[meshPoints[i]];

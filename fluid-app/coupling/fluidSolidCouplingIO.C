@@ -48,7 +48,8 @@ void Foam::fluidSolidCoupling::logSolve
     const SolveResult& r,
     const vector& total,
     const scalar maxDisplacement,
-    const scalar wallSeconds
+    const scalar wallSeconds,
+    const scalar exchangeSeconds
 )
 {
     if (Pstream::master())
@@ -57,7 +58,7 @@ void Foam::fluidSolidCoupling::logSolve
             << solve.step << ',' << solve.iteration << ',' << r.iterations << ','
             << int(r.converged) << ',' << r.residualU << ',' << r.residualP << ','
             << total.x() << ',' << total.y() << ',' << total.z() << ','
-            << maxDisplacement << ',' << wallSeconds << ',' << exchangeSeconds_ << endl;
+            << maxDisplacement << ',' << wallSeconds << ',' << exchangeSeconds << endl;
     }
 }
 

@@ -224,41 +224,39 @@ std::map<std::string, std::set<std::string>> documentedKeys(const std::string& s
 }
 } // namespace
 
-// Every registered accelerator is documented in the shipped example with exactly its keys.
-TEST(CouplingParameters, DocumentedAcceleratorKeysMatchTheRegistry)
+// Every registered strategy of `section` with coefficients is documented in the shipped example
+// with exactly its keys; one without coefficients has no block.
+template <class Product>
+void expectDocumented(const std::string& section,
+                      const std::vector<config::StrategyType<Product>>& types)
 {
     std::vector<std::string> names;
-    for (const auto& t : acceleration::acceleratorTypes())
+    for (const auto& t : types)
         names.push_back(t.name);
-    const auto documented = documentedKeys("acceleration", names);
-    for (const auto& t : acceleration::acceleratorTypes())
-    {
-        ASSERT_EQ(documented.count(t.name), 1u)
-            << t.name << " is registered but not documented in config/coupled.example.yaml";
-        EXPECT_EQ(documented.at(t.name), std::set<std::string>(t.keys.begin(), t.keys.end()))
-            << "keys of acceleration." << t.name;
-    }
-    EXPECT_EQ(documented.size(), names.size());
-}
-
-// Every registered mapping with coefficients is documented in the shipped example with exactly
-// its keys (a mapping without coefficients has no block).
-TEST(CouplingParameters, DocumentedMappingKeysMatchTheRegistry)
-{
-    std::vector<std::string> names;
-    for (const auto& t : mapping::mappingTypes())
-        names.push_back(t.name);
-    const auto documented = documentedKeys("mapping", names);
-    for (const auto& t : mapping::mappingTypes())
+    const auto documented = documentedKeys(section, names);
+    std::size_t withKeys = 0;
+    for (const auto& t : types)
     {
         if (t.keys.empty())
         {
             EXPECT_EQ(documented.count(t.name), 0u) << t.name << " has no coefficients";
             continue;
         }
+        ++withKeys;
         ASSERT_EQ(documented.count(t.name), 1u)
             << t.name << " is registered but not documented in config/coupled.example.yaml";
         EXPECT_EQ(documented.at(t.name), std::set<std::string>(t.keys.begin(), t.keys.end()))
-            << "keys of mapping." << t.name;
+            << "keys of " << section << "." << t.name;
     }
+    EXPECT_EQ(documented.size(), withKeys);
+}
+
+TEST(CouplingParameters, DocumentedAcceleratorKeysMatchTheRegistry)
+{
+    expectDocumented("acceleration", acceleration::acceleratorTypes());
+}
+
+TEST(CouplingParameters, DocumentedMappingKeysMatchTheRegistry)
+{
+    expectDocumented("mapping", mapping::mappingTypes());
 }

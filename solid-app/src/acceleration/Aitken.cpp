@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "acceleration/Aitken.hpp"
 
-#include "acceleration/NumberText.hpp"
 #include "acceleration/ParameterChecks.hpp"
 #include "config/YamlReader.hpp"
 
@@ -111,10 +110,10 @@ Eigen::VectorXd Aitken::update(const Eigen::VectorXd& previousIterate,
             // The carried factor is kept in [min_relaxation, max_relaxation] (positive).
             omega_ = std::min(std::max(levelOmega_, params_.minRelaxation), params_.maxRelaxation);
             if (omega_ != levelOmega_)
-                note_ = "aitken: carried-over omega " + numberText(levelOmega_) + " clamped to " +
-                        numberText(omega_) + " (min_relaxation " +
-                        numberText(params_.minRelaxation) + ", max_relaxation " +
-                        numberText(params_.maxRelaxation) + ")";
+                note_ = "aitken: carried-over omega " + config::formatNumber(levelOmega_) +
+                        " clamped to " + config::formatNumber(omega_) + " (min_relaxation " +
+                        config::formatNumber(params_.minRelaxation) + ", max_relaxation " +
+                        config::formatNumber(params_.maxRelaxation) + ")";
         }
         else
             omega_ = params_.initialRelaxation;
@@ -126,7 +125,7 @@ Eigen::VectorXd Aitken::update(const Eigen::VectorXd& previousIterate,
         if (denominator > 0.0 && std::isfinite(denominator))
             omega_ = clamp(-omega_ * previousResidual_.dot(change) / denominator, "new");
         else
-            note_ = "aitken: residual unchanged, omega kept at " + numberText(omega_);
+            note_ = "aitken: residual unchanged, omega kept at " + config::formatNumber(omega_);
     }
     ++iteration_;
     previousResidual_ = std::move(residual);

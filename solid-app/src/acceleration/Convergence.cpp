@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "acceleration/Convergence.hpp"
 
-#include "acceleration/NumberText.hpp"
+#include "config/YamlReader.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -16,8 +16,8 @@ void ConvergenceParameters::validate() const
     if (!(absoluteTolerance >= 0.0) || !(relativeTolerance >= 0.0))
         throw std::runtime_error(
             "coupling convergence tolerances must be >= 0 (absolute_tolerance " +
-            numberText(absoluteTolerance) + ", relative_tolerance " +
-            numberText(relativeTolerance) + ")");
+            config::formatNumber(absoluteTolerance) + ", relative_tolerance " +
+            config::formatNumber(relativeTolerance) + ")");
     if (!(absoluteTolerance > 0.0) && !(relativeTolerance > 0.0))
         throw std::runtime_error("coupling convergence needs absolute_tolerance (|r|/sqrt(n) in m, "
                                  "e.g. 1e-8) or relative_tolerance (e.g. 1e-5) > 0");

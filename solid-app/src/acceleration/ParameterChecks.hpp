@@ -3,7 +3,7 @@
 // acceleration.<key>, the value and the fix.
 #pragma once
 
-#include "acceleration/NumberText.hpp"
+#include "config/YamlReader.hpp"
 
 #include <cmath>
 #include <stdexcept>
@@ -15,7 +15,7 @@ namespace fsi::acceleration
 // A coefficient for messages: "unset" for NaN (a required key not given).
 inline std::string valueText(double x)
 {
-    return std::isnan(x) ? std::string("unset") : numberText(x);
+    return std::isnan(x) ? std::string("unset") : config::formatNumber(x);
 }
 
 inline void checkInitialRelaxation(double omega, const char* key)
