@@ -2,6 +2,7 @@
 #include "config/SolidConfig.hpp"
 
 #include "config/YamlReader.hpp"
+#include "material/Registry.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -33,35 +34,32 @@ MeshParameters MeshParameters::parse(const Block& b, const std::string& configDi
     return p;
 }
 
+// The law named by `type` reads its own keys (material/Registry.hpp); a key of another law gets
+// "is only for type ..." rather than "unknown key".
 material::MaterialParameters parseMaterial(const Block& b)
 {
-    b.allowOnly({"type", "E", "nu", "K", "G", "modulus_basis", "prony", "density"});
+    std::vector<std::string> names;
+    for (const auto& law : material::materialTypes())
+        names.push_back(law.name);
+    const material::MaterialType& law = *material::findMaterialType(b.choice("type", names));
+    for (const auto& other : material::materialTypes())
+        for (const auto& key : other.keys)
+            if (b.has(key) && std::find(law.keys.begin(), law.keys.end(), key) == law.keys.end())
+            {
+                std::string owners;
+                for (const auto& t : material::materialTypes())
+                    if (std::find(t.keys.begin(), t.keys.end(), key) != t.keys.end())
+                        owners += (owners.empty() ? "" : " or ") + t.name;
+                b.fail(key, "is only for type " + owners + " (remove it)");
+            }
+    std::vector<std::string> allowed{"type", "density"};
+    allowed.insert(allowed.end(), law.keys.begin(), law.keys.end());
+    b.allowOnly(allowed);
     material::MaterialParameters m;
     m.file = fs::path(b.file()).filename().string();
     m.keyPrefix = b.path();
-    m.type = b.choice("type", {"linear-elastic", "neo-hookean", "viscoelastic"});
-    auto optionalNumber = [&b](const char* key)
-    { return b.has(key) ? std::optional<double>(b.number(key)) : std::nullopt; };
-    m.youngsModulus = optionalNumber("E");
-    m.poissonRatio = optionalNumber("nu");
-    m.bulkModulus = optionalNumber("K");
-    m.shearModulus = optionalNumber("G");
-    if (m.type == "viscoelastic")
-    {
-        m.modulusBasis = b.choice("modulus_basis", {"long-term", "instantaneous"});
-        const Block prony = b.block("prony");
-        prony.allowOnly({"convention", "coefficients", "times"});
-        m.pronyConvention = prony.choice("convention", {"long-term-gamma", "abaqus-g"});
-        m.pronyCoefficients = prony.numbers("coefficients");
-        m.pronyTimes = prony.numbers("times");
-    }
-    else
-    {
-        if (b.has("prony"))
-            b.fail("prony", "is only for type viscoelastic (remove it)");
-        if (b.has("modulus_basis"))
-            b.fail("modulus_basis", "is only for type viscoelastic (remove it)");
-    }
+    m.type = law.name;
+    law.parse(b, m);
     m.validate();
     return m;
 }
@@ -390,8 +388,9 @@ SolidConfig SolidConfig::fromRoot(const Block& root, const std::string& file)
     const std::string kin = s.choice("kinematics", {"small-strain", "total-lagrangian"});
     c.kinematics = kin == "small-strain" ? material::Kinematics::SmallStrain
                                          : material::Kinematics::TotalLagrangian;
-    if (c.material.type == "neo-hookean" && c.kinematics == material::Kinematics::SmallStrain)
-        s.fail("kinematics", "must be total-lagrangian for a neo-hookean material");
+    if (material::findMaterialType(c.material.type)->needsTotalLagrangian &&
+        c.kinematics == material::Kinematics::SmallStrain)
+        s.fail("kinematics", "must be total-lagrangian for a " + c.material.type + " material");
     if (auto e = s.optionalBlock("element"))
     {
         e->allowOnly({"type"});

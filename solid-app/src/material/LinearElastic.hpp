@@ -2,6 +2,7 @@
 #pragma once
 
 #include "material/Material.hpp"
+#include "material/Registry.hpp"
 
 namespace fsi::material
 {
@@ -11,6 +12,8 @@ namespace fsi::material
 class LinearElastic final : public Material
 {
 public:
+    // The registry entry: keyword, keys, parse, validate, make (Registry.hpp).
+    static MaterialType entry();
     LinearElastic(double bulkModulus, double shearModulus); // [Pa], > 0
     std::string name() const override { return "linear-elastic"; }
     std::size_t historySize() const override { return 0; }

@@ -1,10 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "material/Material.hpp"
 
-#include "material/LinearElastic.hpp"
 #include "material/MaterialParameters.hpp"
-#include "material/NeoHookean.hpp"
-#include "material/Viscoelastic.hpp"
+#include "material/Registry.hpp"
 
 #include <cmath>
 #include <stdexcept>
@@ -68,19 +66,12 @@ double vonMises(const Vector6& s)
 std::unique_ptr<Material> makeMaterial(const MaterialParameters& p, Kinematics kinematics)
 {
     p.validate();
-    const double k = p.bulkModulusValue();
-    if (p.type == "linear-elastic")
-        return std::make_unique<LinearElastic>(k, p.longTermShearModulus());
-    if (p.type == "neo-hookean")
-    {
-        if (kinematics != Kinematics::TotalLagrangian)
-            throw std::runtime_error(p.file + ": " + p.keyPrefix +
-                                     ".type = neo-hookean needs total-Lagrangian kinematics; "
-                                     "set kinematics to total-lagrangian or use linear-elastic");
-        return std::make_unique<NeoHookean>(k, p.longTermShearModulus());
-    }
-    return std::make_unique<Viscoelastic>(k, p.longTermShearModulus(), p.longTermGamma(),
-                                          p.pronyTimes);
+    const MaterialType& law = *findMaterialType(p.type); // validate() checked it is registered
+    if (law.needsTotalLagrangian && kinematics != Kinematics::TotalLagrangian)
+        p.fail("type", "= " + p.type +
+                           " needs total-Lagrangian kinematics; set kinematics to "
+                           "total-lagrangian or use linear-elastic");
+    return law.make(p);
 }
 
 } // namespace fsi::material

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "material/MaterialParameters.hpp"
 
+#include "config/YamlReader.hpp"
 #include "material/Prony.hpp"
+#include "material/Registry.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -30,16 +32,28 @@ double poisson(double k, double g)
 }
 } // namespace
 
+void MaterialParameters::fail(const std::string& key, const std::string& what) const
+{
+    throw std::runtime_error(file + ": " + keyPrefix + "." + key + " " + what);
+}
+
+void readElasticModuli(const config::Block& b, MaterialParameters& p)
+{
+    auto optionalNumber = [&b](const char* key)
+    { return b.has(key) ? std::optional<double>(b.number(key)) : std::nullopt; };
+    p.youngsModulus = optionalNumber("E");
+    p.poissonRatio = optionalNumber("nu");
+    p.bulkModulus = optionalNumber("K");
+    p.shearModulus = optionalNumber("G");
+}
+
 void MaterialParameters::validate() const
 {
-    const std::string at = file + ": " + keyPrefix + ".";
-    auto fail = [&](const std::string& key, const std::string& what)
-    { throw std::runtime_error(at + key + " " + what); };
     if (type.empty())
-        fail("type", "is missing; set linear-elastic, neo-hookean or viscoelastic");
-    if (type != "linear-elastic" && type != "neo-hookean" && type != "viscoelastic")
-        fail("type",
-             "= '" + type + "' is unknown; use linear-elastic, neo-hookean or viscoelastic");
+        fail("type", "is missing; set " + materialTypeList());
+    const MaterialType* law = findMaterialType(type);
+    if (!law)
+        fail("type", "= '" + type + "' is unknown; use " + materialTypeList());
 
     const bool haveE = youngsModulus.has_value(), haveNu = poissonRatio.has_value();
     const bool haveK = bulkModulus.has_value(), haveG = shearModulus.has_value();
@@ -76,64 +90,16 @@ void MaterialParameters::validate() const
         positive("K", *bulkModulus);
         positive("G", *shearModulus);
     }
+    law->validate(*this);
+}
 
-    if (type != "viscoelastic")
-    {
-        if (!pronyConvention.empty() || !pronyCoefficients.empty() || !pronyTimes.empty())
-            fail("prony", "is given for type " + type + "; remove it or set type: viscoelastic");
-        if (!modulusBasis.empty())
-            fail("modulus_basis",
-                 "is given for type " + type + "; remove it (elastic laws have one modulus)");
-        return;
-    }
-
-    if (modulusBasis.empty())
-        fail("modulus_basis", "is missing; say whether E/G is the long-term or the "
-                              "instantaneous modulus: long-term | instantaneous");
-    if (modulusBasis != "long-term" && modulusBasis != "instantaneous")
+void MaterialParameters::requireNoViscoelasticData() const
+{
+    if (!pronyConvention.empty() || !pronyCoefficients.empty() || !pronyTimes.empty())
+        fail("prony", "is given for type " + type + "; remove it or set type: viscoelastic");
+    if (!modulusBasis.empty())
         fail("modulus_basis",
-             "= '" + modulusBasis + "' is unknown; use long-term or instantaneous");
-    if (pronyConvention.empty())
-        fail("prony.convention", "is missing; set long-term-gamma (paper: gamma relative to the "
-                                 "long-term modulus) or abaqus-g (g relative to the instantaneous "
-                                 "modulus)");
-    if (pronyConvention != "long-term-gamma" && pronyConvention != "abaqus-g")
-        fail("prony.convention",
-             "= '" + pronyConvention + "' is unknown; use long-term-gamma or abaqus-g");
-    if (pronyCoefficients.empty())
-        fail("prony.coefficients", "is empty; give at least one term or use type linear-elastic");
-    if (pronyTimes.size() != pronyCoefficients.size())
-        fail("prony.times", "has " + std::to_string(pronyTimes.size()) +
-                                " entries but "
-                                "prony.coefficients has " +
-                                std::to_string(pronyCoefficients.size()) +
-                                "; give one tau per term");
-    for (std::size_t i = 0; i < pronyTimes.size(); ++i)
-    {
-        if (!std::isfinite(pronyTimes[i]) || pronyTimes[i] <= 0.0)
-            fail("prony.times", "[" + std::to_string(i) + "] = " + number(pronyTimes[i]) +
-                                    " must be a relaxation time > 0 in s");
-        if (!std::isfinite(pronyCoefficients[i]) || pronyCoefficients[i] < 0.0)
-            fail("prony.coefficients",
-                 "[" + std::to_string(i) + "] = " + number(pronyCoefficients[i]) + " must be >= 0");
-    }
-    if (pronyConvention == "abaqus-g")
-    {
-        const double sum = std::accumulate(pronyCoefficients.begin(), pronyCoefficients.end(), 0.0);
-        if (sum >= 1.0)
-            fail("prony.coefficients", "sum of Abaqus g = " + number(sum) +
-                                           " must be < 1 (long-term modulus > 0); check the "
-                                           "convention (long-term-gamma?)");
-    }
-    // With the volumetric part elastic, a large sum of gamma makes the instantaneous response
-    // auxetic (nu -> -1 as gamma grows): almost always a typo or the wrong convention.
-    const double nuInstantaneous = instantaneousPoissonRatio();
-    if (!(nuInstantaneous >= 0.0))
-        fail("prony.coefficients",
-             "give an instantaneous Poisson ratio of " + number(nuInstantaneous) +
-                 " < 0 (instantaneous shear modulus " + number(instantaneousShearModulus()) +
-                 " Pa against bulk modulus " + number(bulkModulusValue()) +
-                 " Pa); check the values and prony.convention");
+             "is given for type " + type + "; remove it (elastic laws have one modulus)");
 }
 
 std::vector<double> MaterialParameters::longTermGamma() const

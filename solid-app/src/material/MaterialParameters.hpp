@@ -1,16 +1,23 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Plain material data, filled by the config layer (no YAML here), checked by validate().
+// Plain material data shared by the laws, filled by each law's parse() (Registry.hpp) from the
+// material block, checked by validate().
 #pragma once
 
 #include <optional>
 #include <string>
 #include <vector>
 
+namespace fsi::config
+{
+class Block;
+}
+
 namespace fsi::material
 {
 
 // Keys (as named in error messages, relative to keyPrefix):
-//   type                 linear-elastic | neo-hookean | viscoelastic
+//   type                 a registered law (Registry.hpp): linear-elastic | neo-hookean |
+//                        viscoelastic
 //   E, nu                Young's modulus [Pa] and Poisson's ratio, or
 //   K, G                 bulk and shear modulus [Pa]   (exactly one of the two pairs)
 //   modulus_basis        long-term | instantaneous     (viscoelastic only, required:
@@ -38,8 +45,13 @@ struct MaterialParameters
     std::string keyPrefix = "material";
 
     // Throws std::runtime_error, one line naming file, key and the fix, on the first
-    // problem found. Every accessor below assumes a validated struct.
+    // problem found: the type is registered, the moduli, then the law's own checks.
+    // Every accessor below assumes a validated struct.
     void validate() const;
+    // Throws std::runtime_error "<file>: <keyPrefix>.<key> <what>".
+    [[noreturn]] void fail(const std::string& key, const std::string& what) const;
+    // For the elastic laws' validate(): fails when Prony data or modulus_basis are set.
+    void requireNoViscoelasticData() const;
 
     // Prony series in the paper's long-term convention (empty for elastic laws).
     std::vector<double> longTermGamma() const;
@@ -59,5 +71,8 @@ struct MaterialParameters
     // long-term and instantaneous E / G / K / nu.
     std::string describe() const;
 };
+
+// Reads E, nu, K, G (those present) of a material block into p; the laws' parse() use it.
+void readElasticModuli(const config::Block& block, MaterialParameters& p);
 
 } // namespace fsi::material

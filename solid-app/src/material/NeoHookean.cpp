@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "material/NeoHookean.hpp"
 
+#include "material/MaterialParameters.hpp"
+
 #include <Eigen/Dense>
 
 #include <cmath>
@@ -13,6 +15,19 @@ namespace
 constexpr int voigtI[6] = {0, 1, 2, 0, 1, 0};
 constexpr int voigtJ[6] = {0, 1, 2, 1, 2, 2};
 } // namespace
+
+MaterialType NeoHookean::entry()
+{
+    MaterialType t;
+    t.name = "neo-hookean";
+    t.keys = {"E", "nu", "K", "G"};
+    t.needsTotalLagrangian = true;
+    t.parse = readElasticModuli;
+    t.validate = [](const MaterialParameters& p) { p.requireNoViscoelasticData(); };
+    t.make = [](const MaterialParameters& p) -> std::unique_ptr<Material>
+    { return std::make_unique<NeoHookean>(p.bulkModulusValue(), p.longTermShearModulus()); };
+    return t;
+}
 
 NeoHookean::NeoHookean(double bulkModulus, double shearModulus)
     : lambda_(bulkModulus - 2.0 * shearModulus / 3.0), mu_(shearModulus)

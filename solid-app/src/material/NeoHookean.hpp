@@ -2,6 +2,7 @@
 #pragma once
 
 #include "material/Material.hpp"
+#include "material/Registry.hpp"
 
 namespace fsi::material
 {
@@ -17,6 +18,8 @@ namespace fsi::material
 class NeoHookean final : public Material
 {
 public:
+    // The registry entry: keyword, keys, parse, validate, make (Registry.hpp).
+    static MaterialType entry();
     NeoHookean(double bulkModulus, double shearModulus); // [Pa], > 0
     std::string name() const override { return "neo-hookean"; }
     std::size_t historySize() const override { return 0; }

@@ -1,9 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "material/Viscoelastic.hpp"
 
+#include "config/YamlReader.hpp"
+#include "material/MaterialParameters.hpp"
 #include "material/Prony.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 
@@ -22,7 +26,92 @@ void checkStep(const TimeStep& step, const double* history)
         throw std::runtime_error("viscoelastic: time step dt = " + std::to_string(step.dt) +
                                  " < 0; time levels must increase");
 }
+
+std::string number(double v)
+{
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.6g", v);
+    return buffer;
+}
+
+void parseViscoelastic(const config::Block& b, MaterialParameters& p)
+{
+    readElasticModuli(b, p);
+    p.modulusBasis = b.choice("modulus_basis", {"long-term", "instantaneous"});
+    const config::Block prony = b.block("prony");
+    prony.allowOnly({"convention", "coefficients", "times"});
+    p.pronyConvention = prony.choice("convention", {"long-term-gamma", "abaqus-g"});
+    p.pronyCoefficients = prony.numbers("coefficients");
+    p.pronyTimes = prony.numbers("times");
+}
+
+void validateViscoelastic(const MaterialParameters& p)
+{
+    auto fail = [&p](const std::string& key, const std::string& what) { p.fail(key, what); };
+    if (p.modulusBasis.empty())
+        fail("modulus_basis", "is missing; say whether E/G is the long-term or the "
+                              "instantaneous modulus: long-term | instantaneous");
+    if (p.modulusBasis != "long-term" && p.modulusBasis != "instantaneous")
+        fail("modulus_basis",
+             "= '" + p.modulusBasis + "' is unknown; use long-term or instantaneous");
+    if (p.pronyConvention.empty())
+        fail("prony.convention", "is missing; set long-term-gamma (paper: gamma relative to the "
+                                 "long-term modulus) or abaqus-g (g relative to the instantaneous "
+                                 "modulus)");
+    if (p.pronyConvention != "long-term-gamma" && p.pronyConvention != "abaqus-g")
+        fail("prony.convention",
+             "= '" + p.pronyConvention + "' is unknown; use long-term-gamma or abaqus-g");
+    const auto& coefficients = p.pronyCoefficients;
+    const auto& times = p.pronyTimes;
+    if (coefficients.empty())
+        fail("prony.coefficients", "is empty; give at least one term or use type linear-elastic");
+    if (times.size() != coefficients.size())
+        fail("prony.times", "has " + std::to_string(times.size()) +
+                                " entries but prony.coefficients has " +
+                                std::to_string(coefficients.size()) + "; give one tau per term");
+    for (std::size_t i = 0; i < times.size(); ++i)
+    {
+        if (!std::isfinite(times[i]) || times[i] <= 0.0)
+            fail("prony.times", "[" + std::to_string(i) + "] = " + number(times[i]) +
+                                    " must be a relaxation time > 0 in s");
+        if (!std::isfinite(coefficients[i]) || coefficients[i] < 0.0)
+            fail("prony.coefficients",
+                 "[" + std::to_string(i) + "] = " + number(coefficients[i]) + " must be >= 0");
+    }
+    if (p.pronyConvention == "abaqus-g")
+    {
+        const double sum = std::accumulate(coefficients.begin(), coefficients.end(), 0.0);
+        if (sum >= 1.0)
+            fail("prony.coefficients", "sum of Abaqus g = " + number(sum) +
+                                           " must be < 1 (long-term modulus > 0); check the "
+                                           "convention (long-term-gamma?)");
+    }
+    // With the volumetric part elastic, a large sum of gamma makes the instantaneous response
+    // auxetic (nu -> -1 as gamma grows): almost always a typo or the wrong convention.
+    const double nuInstantaneous = p.instantaneousPoissonRatio();
+    if (!(nuInstantaneous >= 0.0))
+        fail("prony.coefficients",
+             "give an instantaneous Poisson ratio of " + number(nuInstantaneous) +
+                 " < 0 (instantaneous shear modulus " + number(p.instantaneousShearModulus()) +
+                 " Pa against bulk modulus " + number(p.bulkModulusValue()) +
+                 " Pa); check the values and prony.convention");
+}
 } // namespace
+
+MaterialType Viscoelastic::entry()
+{
+    MaterialType t;
+    t.name = "viscoelastic";
+    t.keys = {"E", "nu", "K", "G", "modulus_basis", "prony"};
+    t.parse = parseViscoelastic;
+    t.validate = validateViscoelastic;
+    t.make = [](const MaterialParameters& p) -> std::unique_ptr<Material>
+    {
+        return std::make_unique<Viscoelastic>(p.bulkModulusValue(), p.longTermShearModulus(),
+                                              p.longTermGamma(), p.pronyTimes);
+    };
+    return t;
+}
 
 Viscoelastic::Viscoelastic(double bulkModulus, double longTermShearModulus,
                            std::vector<double> gamma, std::vector<double> tau)

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "material/Material.hpp"
+#include "material/Registry.hpp"
 
 #include <vector>
 
@@ -28,6 +29,8 @@ namespace fsi::material
 class Viscoelastic final : public Material
 {
 public:
+    // The registry entry: keyword, keys, parse, validate, make (Registry.hpp).
+    static MaterialType entry();
     // bulkModulus K, longTermShearModulus G_inf [Pa] > 0; gamma_i >= 0 relative to G_inf;
     // tau_i > 0 [s]; equal lengths.
     Viscoelastic(double bulkModulus, double longTermShearModulus, std::vector<double> gamma,
