@@ -9,6 +9,7 @@
 #include "io/VtuWriter.hpp"
 #include "material/Material.hpp"
 #include "mesh/Mesh.hpp"
+#include "schedule/Schedule.hpp"
 #include "setup/SolidSetup.hpp"
 
 #include <mpi.h>
@@ -140,20 +141,16 @@ int runStandalone(const config::Block& root, const RunOptions& options)
     std::string levels =
         "level,time,dt,load_factor,newton_iterations,load_cuts,residual,factorizations,wall_s\n";
 
-    // Level times: planned (uniform, list, geometric) or following the solution (adaptive).
-    const auto& schedule = cfg.time;
-    const bool adaptive = schedule.present && schedule.type == "adaptive";
-    const std::vector<double> planned = adaptive ? std::vector<double>{0.0} : schedule.levels();
-    double time = 0.0, previous = 0.0, step = schedule.firstStep;
+    // Level times: planned (steady, uniform, list, geometric) or following the solution
+    // (adaptive: the relative change of the displacement field over each level).
+    const std::unique_ptr<schedule::Schedule> schedule = cfg.time.schedule.make();
     std::vector<double> previousU(solver.numDofs(), 0.0);
     std::size_t levelCount = 0;
     for (std::size_t n = 0;; ++n)
     {
-        double dt = n == 0 ? 0.0 : time - previous;
-        if (schedule.type == "uniform" && std::abs(dt - schedule.dt) <= 1e-9 * schedule.dt)
-            dt = schedule.dt; // bitwise-constant dt: the factorization can be reused
-        const material::TimeStep levelStep{time, dt};
-        const double factor = schedule.factorAt(time);
+        // uniform reports its dt bitwise-constant: the factorization can be reused
+        const material::TimeStep levelStep{schedule->time(), schedule->lastStep()};
+        const double factor = cfg.time.factorAt(levelStep.time);
         if (rank == 0)
             std::printf("level %zu  t = %g s  dt = %g s  load factor %g\n", n, levelStep.time,
                         levelStep.dt, factor);
@@ -173,7 +170,7 @@ int runStandalone(const config::Block& root, const RunOptions& options)
             return 2;
         }
         solver.acceptLevel();
-        const bool last = adaptive ? time >= schedule.end : n + 1 >= planned.size();
+        const bool last = !schedule->hasNext();
         // the results of the accepted level (stress with the level's own history increment)
         std::vector<double> extra;
         for (const auto& at : solver.stressAndStrainAt(watchNodes))
@@ -216,13 +213,7 @@ int runStandalone(const config::Block& root, const RunOptions& options)
             levelCount = n + 1;
             break;
         }
-        previous = time;
-        if (!adaptive)
-        {
-            time = planned[n + 1];
-            continue;
-        }
-        // adaptive: relative change of the displacement field over the level just accepted
+        // relative change of the displacement field over the level just accepted
         const auto& u = solver.displacement();
         double du = 0.0, umax = 0.0;
         for (int node = 0; node < mesh.numNodes(); ++node)
@@ -238,9 +229,7 @@ int runStandalone(const config::Block& root, const RunOptions& options)
             umax = std::max(umax, u2);
         }
         previousU = u;
-        if (n > 0)
-            step = schedule.nextStep(dt, umax > 0.0 ? std::sqrt(du / umax) : 0.0);
-        time = schedule.nextTime(time, step);
+        schedule->advance(umax > 0.0 ? std::sqrt(du / umax) : 0.0);
     }
     if (rank == 0)
     {

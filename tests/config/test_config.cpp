@@ -55,6 +55,16 @@ std::string replaced(std::string text, const std::string& from, const std::strin
     return text.replace(at, from.size(), to);
 }
 
+// The level times of a planned or adaptive schedule, every level's change 0.
+std::vector<double> levelTimes(const fsi::config::TimeParameters& time)
+{
+    const auto schedule = time.schedule.make();
+    std::vector<double> t{schedule->time()};
+    while (schedule->hasNext())
+        t.push_back(schedule->advance(0.0));
+    return t;
+}
+
 } // namespace
 
 TEST(SolidConfig, ValidCaseParsesWithDefaults)
@@ -63,8 +73,8 @@ TEST(SolidConfig, ValidCaseParsesWithDefaults)
     EXPECT_EQ(c.mesh.volume, "solid");
     EXPECT_EQ(c.mesh.clamped, std::vector<std::string>{"root"});
     EXPECT_EQ(c.newton.maxIterations, 25);
-    EXPECT_FALSE(c.time.present);
-    EXPECT_EQ(c.time.levels().size(), 1u);
+    EXPECT_EQ(c.time.schedule.type(), "steady");
+    EXPECT_EQ(levelTimes(c.time), std::vector<double>{0.0});
     EXPECT_EQ(c.loads.tractions.size(), 1u);
     EXPECT_DOUBLE_EQ(c.loads.tractions[0].traction[1], -1.0);
     EXPECT_NE(c.echo().find("small-strain"), std::string::npos);
@@ -127,7 +137,7 @@ TEST(SolidConfig, TimeBlock)
 {
     const auto c = SolidConfig::load(
         write(std::string(valid) + "  time: {dt: 0.5, end: 2, load_factor: [[0, 0], [1, 1]]}\n"));
-    EXPECT_EQ(c.time.levels(), (std::vector<double>{0, 0.5, 1.0, 1.5, 2.0}));
+    EXPECT_EQ(levelTimes(c.time), (std::vector<double>{0, 0.5, 1.0, 1.5, 2.0}));
     EXPECT_DOUBLE_EQ(c.time.factorAt(0.5), 0.5);
     EXPECT_DOUBLE_EQ(c.time.factorAt(3.0), 1.0);
     EXPECT_NE(errorOf(std::string(valid) + "  time: {dt: 0, end: 2}\n")
@@ -139,12 +149,12 @@ TEST(SolidConfig, ListGeometricAndAdaptiveSchedules)
 {
     const auto list = SolidConfig::load(
         write(std::string(valid) + "  time: {type: list, times: [0, 0.1, 1, 10]}\n"));
-    EXPECT_EQ(list.time.levels(), (std::vector<double>{0, 0.1, 1, 10}));
+    EXPECT_EQ(levelTimes(list.time), (std::vector<double>{0, 0.1, 1, 10}));
     // geometric: 0, 0.1, 0.25, 0.475 ... lands on the hit 1 and the end 100
     const auto geo = SolidConfig::load(write(
         std::string(valid) + "  time: {type: geometric, first_step: 0.1, growth: 1.5, end: 100, "
                              "hit: [1, 10]}\n"));
-    const auto t = geo.time.levels();
+    const auto t = levelTimes(geo.time);
     ASSERT_GE(t.size(), 4u);
     EXPECT_DOUBLE_EQ(t[1], 0.1);
     EXPECT_DOUBLE_EQ(t[2], 0.25);
@@ -159,16 +169,27 @@ TEST(SolidConfig, ListGeometricAndAdaptiveSchedules)
         write(std::string(valid) +
               "  time: {type: adaptive, end: 50, first_step: 0.5, target_change: 0.1, "
               "max_step: 20, hit: [7]}\n"));
-    EXPECT_TRUE(ad.time.levels().empty());
-    EXPECT_DOUBLE_EQ(ad.time.nextStep(1.0, 0.0), 2.0);   // no change: growth_limit
-    EXPECT_DOUBLE_EQ(ad.time.nextStep(1.0, 0.05), 2.0);  // half the target: doubled (limit 2)
-    EXPECT_DOUBLE_EQ(ad.time.nextStep(1.0, 0.125), 0.8); // 0.1 / 0.125
-    EXPECT_DOUBLE_EQ(ad.time.nextStep(1.0, 10.0), 0.5);  // shrink_limit
-    EXPECT_DOUBLE_EQ(ad.time.nextStep(15.0, 0.0), 20.0); // max_step
-    EXPECT_DOUBLE_EQ(ad.time.nextTime(5.0, 3.0), 7.0);   // lands on the hit
-    EXPECT_DOUBLE_EQ(ad.time.nextTime(6.5, 0.4), 6.9);
-    EXPECT_DOUBLE_EQ(ad.time.nextTime(6.5, 0.45), 7.0); // a sliver of 0.05 < 0.2 step: stretched
-    EXPECT_DOUBLE_EQ(ad.time.nextTime(40.0, 20.0), 50.0);
+    const auto schedule = ad.time.schedule.make();
+    EXPECT_EQ(schedule->plannedLevels(), -1);
+    EXPECT_DOUBLE_EQ(schedule->advance(0.3), 0.5);   // level 1: first_step
+    EXPECT_DOUBLE_EQ(schedule->advance(0.0), 1.5);   // no change: growth_limit 2
+    EXPECT_DOUBLE_EQ(schedule->advance(0.05), 3.5);  // half the target: doubled (limit 2)
+    EXPECT_DOUBLE_EQ(schedule->advance(0.125), 5.1); // 0.1 / 0.125: dt 1.6
+    EXPECT_DOUBLE_EQ(schedule->advance(0.0), 7.0);   // dt 3.2 would pass the hit: lands on it
+    EXPECT_DOUBLE_EQ(schedule->advance(10.0), 7.95); // shrink_limit 0.5 of the last dt 1.9
+    double last = 0.0;
+    while (schedule->hasNext())
+    {
+        last = schedule->advance(0.0);
+        EXPECT_LE(schedule->lastStep(), 20.0 + 1e-12); // max_step
+    }
+    EXPECT_DOUBLE_EQ(last, 50.0);
+    // the load-factor corners are landed on like hit times
+    const auto ramp = SolidConfig::load(write(std::string(valid) +
+                                              "  time: {type: adaptive, end: 50, first_step: 0.5, "
+                                              "load_factor: [[0, 0], [3.2, 1], [50, 1]]}\n"));
+    const auto rampTimes = levelTimes(ramp.time);
+    EXPECT_NE(std::find(rampTimes.begin(), rampTimes.end(), 3.2), rampTimes.end());
     EXPECT_NE(errorOf(std::string(valid) + "  time: {type: adaptive, end: 50}\n")
                   .find("'solid.time.first_step' missing"),
               std::string::npos); // elastic: no Prony times to derive it from
@@ -212,7 +233,7 @@ TEST(SolidConfig, ShippedExampleIsValid)
 {
     const auto c = SolidConfig::load(std::string(FSI_SOURCE_DIR) + "/config/solid.example.yaml");
     EXPECT_EQ(c.material.type, "viscoelastic");
-    EXPECT_TRUE(c.time.present);
+    EXPECT_NE(c.time.schedule.type(), "steady");
 }
 
 // Issue 15 item 3: silent acceptance.

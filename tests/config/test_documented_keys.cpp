@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The shipped examples document exactly the keys the registries of the flat strategy blocks
-// accept: solid.material (material/Registry.hpp) in config/solid.example.yaml.
+// accept: solid.material (material/Registry.hpp) in config/solid.example.yaml, and the time
+// blocks (schedule/Registry.hpp) of config/solid.example.yaml and config/coupled.example.yaml.
 #include "material/Material.hpp"
 #include "material/MaterialParameters.hpp"
 #include "material/Registry.hpp"
+#include "schedule/Registry.hpp"
 
 #include <gtest/gtest.h>
 
@@ -82,7 +84,9 @@ TEST(DocumentedKeys, MaterialBlockMatchesTheLawRegistry)
                 ++count;
             }
         if (count == 1)
+        {
             EXPECT_NE(doc.comments.at(key).find(owners + " only"), std::string::npos) << key;
+        }
     }
 }
 
@@ -109,4 +113,25 @@ TEST(MaterialRegistry, EachLawBuildsItselfFromItsKeyword)
             << law.name;
     }
     EXPECT_EQ(fsi::material::findMaterialType("hookean"), nullptr);
+}
+
+// The time blocks of both examples document every registered schedule and exactly the keys the
+// schedules read (solid.time also has its own load_factor).
+TEST(DocumentedKeys, TimeBlocksMatchTheScheduleRegistry)
+{
+    using fsi::schedule::scheduleTypes;
+    std::set<std::string> registered{"type"};
+    for (const auto& type : scheduleTypes())
+        registered.insert(type.keys.begin(), type.keys.end());
+    std::set<std::string> standalone = registered;
+    standalone.insert("load_factor");
+    const DocumentedBlock coupled = documentedBlock("coupled.example.yaml", "time");
+    const DocumentedBlock solid = documentedBlock("solid.example.yaml", "time");
+    EXPECT_EQ(coupled.keys, registered);
+    EXPECT_EQ(solid.keys, standalone);
+    for (const auto& type : scheduleTypes())
+    {
+        EXPECT_NE(coupled.comments.at("type").find(type.name), std::string::npos) << type.name;
+        EXPECT_NE(solid.comments.at("type").find(type.name), std::string::npos) << type.name;
+    }
 }

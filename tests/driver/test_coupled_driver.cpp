@@ -8,12 +8,12 @@
 #include "acceleration/IqnIls.hpp"
 #include "driver/CoupledDriver.hpp"
 #include "driver/RecoveryPolicy.hpp"
-#include "driver/TimeSchedule.hpp"
 #include "mapping/NearestNeighbour.hpp"
 #include "material/Material.hpp"
 #include "material/MaterialParameters.hpp"
 #include "mesh/GmshTestMeshes.hpp"
 #include "mesh/Mesh.hpp"
+#include "schedule/Planned.hpp"
 
 #include <gtest/gtest.h>
 #include <mpi.h>
@@ -28,6 +28,13 @@ using namespace fsi;
 
 namespace
 {
+// A list schedule of the given times [s] (first 0).
+schedule::ScheduleParameters listOfTimes(std::vector<double> times)
+{
+    schedule::ListParameters p;
+    p.times = std::move(times);
+    return p;
+}
 
 int worldRank()
 {
@@ -264,8 +271,7 @@ TEST(CoupledDriver, ViscoelasticLevelsSpanInstantaneousAndLongTermResponses)
     const double kappa = 0.5 / U1long;
 
     auto coupling = couplingWith("aitken", 0.5);
-    coupling.time.type = "list";
-    coupling.time.times = {0.0, 1.0e9};
+    coupling.time = listOfTimes({0.0, 1.0e9});
     const auto r = runCoupled(visco, coupling, F0, kappa);
     ASSERT_EQ(r.summary.history.size(), 2u);
     // history holds the watched quantities; the mean is taken from the logged solver state:
@@ -275,8 +281,7 @@ TEST(CoupledDriver, ViscoelasticLevelsSpanInstantaneousAndLongTermResponses)
 
     // Level 0 alone: the instantaneous response.
     auto instantOnly = couplingWith("aitken", 0.5);
-    instantOnly.time.type = "list";
-    instantOnly.time.times = {0.0};
+    instantOnly.time = listOfTimes({0.0});
     const auto r0 = runCoupled(visco, instantOnly, F0, kappa);
     EXPECT_NEAR(r0.meanUy, U1inst / (1 + kappa * U1inst), 1e-7 * U1inst);
 }
@@ -306,8 +311,7 @@ TEST(CoupledDriver, FailedStructuralSolveIsRedoneWithSmallerTimeStep)
     const auto visco = viscoelastic({0.6}, {1.0});
     const double kappa = 0.5 / meanTipResponse(elastic(K, G), F0);
     auto coupling = couplingWith("aitken", 0.5);
-    coupling.time.type = "list";
-    coupling.time.times = {0.0, 1.0, 2.0};
+    coupling.time = listOfTimes({0.0, 1.0, 2.0});
     RunOptions unstable;
     unstable.unstableStep = 0.5;
     const auto cured = runCoupled(visco, coupling, F0, kappa, unstable);
@@ -323,9 +327,10 @@ TEST(CoupledDriver, FailedStructuralSolveIsRedoneWithSmallerTimeStep)
     EXPECT_GE(retries, 2);
     // Reference: the same times without failures (the schedule the cure produced).
     auto reference = coupling;
-    reference.time.times.clear();
+    auto& referenceTimes = reference.time.get<schedule::ListParameters>()->times;
+    referenceTimes.clear();
     for (const auto& rec : h)
-        reference.time.times.push_back(rec.time);
+        referenceTimes.push_back(rec.time);
     const auto plain = runCoupled(visco, reference, F0, kappa);
     // Equal to the coupling and Newton tolerances (the retried levels start without predictor).
     EXPECT_NEAR(cured.meanUy, plain.meanUy, 1e-8 * std::abs(plain.meanUy));
@@ -335,21 +340,24 @@ TEST(CoupledDriver, FailedStructuralSolveIsRedoneWithSmallerTimeStep)
 // as an uninterrupted run: same iterations per level (IQN-ILS reuses columns of past levels, so
 // the accelerator state must come back too) and the same displacement. On 2 ranks the restart
 // runs on 1 rank (the solid history is keyed by cell, not by rank).
-TEST(CoupledDriver, RestartReproducesTheUninterruptedRun)
+// Restart with each kind of predictor: the structural one needs the checkpointed interface
+// forces of the last two levels.
+void expectRestartReproducesTheUninterruptedRun(const std::string& predictor)
 {
+    SCOPED_TRACE("predictor " + predictor);
     const auto visco = viscoelastic({0.6, 0.4}, {0.3, 3.0});
     const double kappa = 1.2 / meanTipResponse(elastic(K, G), F0);
     auto coupling = couplingWith("iqn-ils", 0.5);
     coupling.acceleration.get<acceleration::IqnIlsParameters>()->reuseLevels = 2;
     coupling.convergence.absoluteTolerance = 1e-11;
-    coupling.time.type = "list";
-    coupling.time.times = {0.0, 0.1, 0.4, 1.0, 3.0, 10.0};
+    coupling.time = listOfTimes({0.0, 0.1, 0.4, 1.0, 3.0, 10.0});
+    coupling.predictor = predictor;
     const auto whole = runCoupled(visco, coupling, F0, kappa);
 
     RunOptions first;
     first.out = sharedFolder(MPI_COMM_WORLD, "restart");
     auto shortened = coupling;
-    shortened.time.times = {0.0, 0.1, 0.4};
+    shortened.time.get<schedule::ListParameters>()->times = {0.0, 0.1, 0.4};
     // A checkpoint folder of an earlier, longer run (issue 15): it must not count as the
     // newest and make the run prune its own checkpoints.
     if (worldRank() == 0)
@@ -410,6 +418,12 @@ TEST(CoupledDriver, RestartReproducesTheUninterruptedRun)
         std::filesystem::remove_all(first.out);
 }
 
+TEST(CoupledDriver, RestartReproducesTheUninterruptedRun)
+{
+    for (const char* predictor : {"linear", "structural-linear"})
+        expectRestartReproducesTheUninterruptedRun(predictor);
+}
+
 // The error of an elastic Aitken run that must fail ("no error" if it did not).
 std::string errorOfRun(const RunOptions& options)
 {
@@ -462,8 +476,7 @@ TEST(CoupledDriver, InexactFluidSolvesEndEveryLevelAtTheFinalAccuracy)
     auto coupling = couplingWith("iqn-ils", 0.5);
     coupling.convergence.absoluteTolerance = 1e-10; // [m]; |u| ~ 0.04 m: the final 1e-9 force
                                                     // accuracy leaves ~4e-11 m
-    coupling.time.type = "list";
-    coupling.time.times = {0.0, 0.5, 1.0, 2.0, 1.0e9};
+    coupling.time = listOfTimes({0.0, 0.5, 1.0, 2.0, 1.0e9});
     driver::FluidAccuracyParameters accuracy;
     accuracy.finalForceTolerance = 1e-9;
     accuracy.maxForceTolerance = 1e-2;
@@ -510,7 +523,7 @@ TEST(RecoveryPolicy, RelaxationCureScalesAFreshAccelerator)
 {
     auto coupling = couplingWith("constant", 1.0);
     driver::RecoveryPolicy policy(coupling.recovery, coupling.acceleration);
-    driver::TimeSchedule schedule({}, {});
+    schedule::Steady schedule;
     auto accelerator = policy.makeAccelerator();
     const driver::LevelAttempt diverged{driver::Outcome::Diverged, "diverged", 3};
     EXPECT_FALSE(policy.cure(diverged, schedule, accelerator).empty());
@@ -548,4 +561,50 @@ TEST(CoupledDriver, HistoryCarriesReactionAndStressProbes)
     }
     for (double v : level.probes)
         EXPECT_TRUE(std::isfinite(v));
+}
+
+// The structural predictor solves the solid at the new time under the last level's loads: when
+// the loads do not depend on the interface (kappa = 0) that is the level's exact solution, so
+// every level is accepted at its first coupling iteration with a zero residual, while the linear
+// predictor misses the curved creep and iterates; both end in the same state. With feedback
+// (kappa > 0) the structural predictors reach the same fixed point as the linear one.
+TEST(CoupledDriver, StructuralPredictorIsExactUnderFrozenLoads)
+{
+    const auto visco = viscoelastic({0.6, 0.4}, {0.3, 3.0});
+    auto coupling = couplingWith("iqn-ils", 0.5);
+    coupling.convergence.absoluteTolerance = 1e-12; // [m]; |u| ~ 1e-3 m
+    coupling.time = listOfTimes({0.0, 0.1, 0.4, 1.0, 3.0, 10.0});
+    coupling.predictor = "linear";
+    const auto linear = runCoupled(visco, coupling, F0, 0.0);
+    coupling.predictor = "structural";
+    const auto structural = runCoupled(visco, coupling, F0, 0.0);
+    ASSERT_EQ(structural.summary.history.size(), 6u);
+    for (const auto& level : structural.summary.history)
+    {
+        if (level.level == 0)
+            continue; // no predictor: starts from rest
+        EXPECT_EQ(level.couplingIterations, 1) << "level " << level.level;
+        if (worldRank() == 0)
+        {
+            EXPECT_LE(level.firstResidual, 1e-13) << "level " << level.level;
+        }
+    }
+    // the linear predictor misses every level after the first: at least 2 iterations each
+    EXPECT_GE(linear.summary.couplingIterations - linear.summary.history[0].couplingIterations,
+              2 * 5);
+    EXPECT_NEAR(structural.meanUy, linear.meanUy, 1e-9 * std::abs(linear.meanUy));
+
+    const double kappa = 1.2 / meanTipResponse(elastic(K, G), F0);
+    coupling.predictor = "linear";
+    const auto feedbackLinear = runCoupled(visco, coupling, F0, kappa);
+    for (const char* predictor : {"structural", "structural-linear"})
+    {
+        coupling.predictor = predictor;
+        const auto r = runCoupled(visco, coupling, F0, kappa);
+        EXPECT_NEAR(r.meanUy, feedbackLinear.meanUy, 1e-9 * std::abs(feedbackLinear.meanUy))
+            << predictor;
+        if (worldRank() == 0)
+            std::printf("predictor %s: %d coupling iterations (linear: %d)\n", predictor,
+                        r.summary.couplingIterations, feedbackLinear.summary.couplingIterations);
+    }
 }

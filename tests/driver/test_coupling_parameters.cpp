@@ -8,6 +8,7 @@
 #include "mapping/RbfPartitionOfUnity.hpp"
 #include "mapping/RbfWendlandC2.hpp"
 #include "mapping/Registry.hpp"
+#include "schedule/Adaptive.hpp"
 
 #include <gtest/gtest.h>
 
@@ -64,8 +65,8 @@ TEST(CouplingParameters, ShippedExampleParses)
     EXPECT_DOUBLE_EQ(p.acceleration.get<acceleration::AitkenParameters>()->initialRelaxation, 0.5);
     EXPECT_EQ(p.mapping.type(), "rbf-wendland-c2");
     EXPECT_DOUBLE_EQ(p.mapping.strategy.get<mapping::WendlandParameters>()->supportRadius, 0.004);
-    EXPECT_EQ(p.time.type, "adaptive");
-    EXPECT_DOUBLE_EQ(p.time.end, 3600.0);
+    EXPECT_EQ(p.time.type(), "adaptive");
+    EXPECT_DOUBLE_EQ(p.time.get<schedule::AdaptiveParameters>()->end, 3600.0);
     ASSERT_TRUE(p.sectionAngle.has_value());
     EXPECT_DOUBLE_EQ(p.sectionAngle->liftDirection[1], -1.0);
     EXPECT_EQ(p.mapping.strategy.get<mapping::WendlandParameters>()->solver, "auto");
@@ -81,7 +82,7 @@ TEST(CouplingParameters, ShippedExampleParses)
 TEST(CouplingParameters, MinimalBlockHasSteadyDefaults)
 {
     const auto p = parseText(minimal);
-    EXPECT_EQ(p.time.type, "steady");
+    EXPECT_EQ(p.time.type(), "steady");
     EXPECT_EQ(p.maxIterations, 30);
     EXPECT_FALSE(p.continueOnMaxIterations);
     EXPECT_EQ(p.launch.mode, "mpmd");

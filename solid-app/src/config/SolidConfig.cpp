@@ -3,6 +3,8 @@
 
 #include "config/YamlReader.hpp"
 #include "material/Registry.hpp"
+#include "schedule/Adaptive.hpp"
+#include "schedule/Geometric.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -184,147 +186,10 @@ double TimeParameters::factorAt(double t) const
     return loadFactor.back()[1];
 }
 
-std::vector<double> TimeParameters::marks() const
-{
-    std::vector<double> m = hit;
-    for (const auto& row : loadFactor)
-        if (row[0] > 0.0 && row[0] < end)
-            m.push_back(row[0]);
-    m.push_back(end);
-    std::sort(m.begin(), m.end());
-    m.erase(std::unique(m.begin(), m.end(),
-                        [&](double a, double b) { return std::abs(a - b) <= 1e-12 * end; }),
-            m.end());
-    return m;
-}
-
-double TimeParameters::nextTime(double time, double step) const
-{
-    for (double mark : marks())
-        if (mark > time * (1.0 + 1e-12) + 1e-300)
-        {
-            const double next = time + step;
-            return next >= mark - 0.2 * step ? mark : next;
-        }
-    return end;
-}
-
-double TimeParameters::nextStep(double lastStep, double change) const
-{
-    const double factor =
-        change > 0.0 ? std::clamp(targetChange / change, shrinkLimit, growthLimit) : growthLimit;
-    double step = std::max(lastStep * factor, minStep);
-    if (maxStep > 0.0)
-        step = std::min(step, maxStep);
-    return step;
-}
-
-std::vector<double> TimeParameters::levels() const
-{
-    std::vector<double> t{0.0};
-    if (!present)
-        return t;
-    if (type == "list")
-        return times;
-    if (type == "adaptive")
-        return {};
-    if (type == "geometric")
-    {
-        double step = firstStep;
-        // (bounded: parse() rejects schedules longer than kMaxTimeLevels)
-        while (t.back() < end && t.size() <= static_cast<std::size_t>(kMaxTimeLevels))
-        {
-            t.push_back(nextTime(t.back(), step));
-            step = maxStep > 0.0 ? std::min(step * growth, maxStep) : step * growth;
-        }
-        return t;
-    }
-    const long n = std::lround(std::ceil(end / dt - 1e-9));
-    for (long i = 1; i <= n; ++i)
-        t.push_back(std::min(end, i * dt));
-    return t;
-}
-
-TimeParameters TimeParameters::parse(const Block& b)
+TimeParameters TimeParameters::parse(const Block& b, const std::vector<double>& relaxationTimes)
 {
     TimeParameters p;
-    p.present = true;
-    p.type = b.choice("type", {"uniform", "list", "geometric", "adaptive"}, "uniform");
-    if (p.type == "uniform")
-    {
-        b.allowOnly({"type", "dt", "end", "load_factor"});
-        p.dt = b.number("dt");
-        p.end = b.number("end");
-        if (!(p.dt > 0.0))
-            b.fail("dt", "must be > 0 [s]");
-        if (!(p.end >= 0.0))
-            b.fail("end", "must be >= 0 [s]");
-        if (p.end / p.dt > static_cast<double>(kMaxTimeLevels))
-            b.fail("end", "= " + formatNumber(p.end) + " s gives " + formatNumber(p.end / p.dt) +
-                              " levels of dt = " + formatNumber(p.dt) + " s, more than the " +
-                              std::to_string(kMaxTimeLevels) + " allowed; raise dt or lower end");
-    }
-    else if (p.type == "list")
-    {
-        b.allowOnly({"type", "times", "load_factor"});
-        p.times = b.numbers("times");
-        if (p.times.empty() || p.times.front() != 0.0)
-            b.fail("times", "must start at 0 (the instantaneous level), e.g. [0, 0.1, 1, 10]");
-        for (std::size_t i = 1; i < p.times.size(); ++i)
-            if (!(p.times[i] > p.times[i - 1]))
-                b.fail("times", "must be strictly increasing [s]");
-        p.end = p.times.back();
-    }
-    else
-    {
-        const bool geometric = p.type == "geometric";
-        if (geometric)
-            b.allowOnly({"type", "end", "first_step", "growth", "max_step", "hit", "load_factor"});
-        else
-            b.allowOnly({"type", "end", "first_step", "max_step", "min_step", "target_change",
-                         "growth_limit", "shrink_limit", "hit", "load_factor"});
-        p.end = b.number("end");
-        if (!(p.end > 0.0))
-            b.fail("end", "must be > 0 [s]");
-        p.firstStep = geometric ? b.number("first_step") : b.number("first_step", 0.0);
-        if (geometric ? !(p.firstStep > 0.0) : !(p.firstStep >= 0.0))
-            b.fail("first_step", geometric ? "must be > 0 [s]"
-                                           : "must be >= 0 [s] (0: a tenth of the shortest tau)");
-        p.maxStep = b.number("max_step", 0.0);
-        if (!(p.maxStep >= 0.0))
-            b.fail("max_step", "must be >= 0 [s] (0: unlimited)");
-        if (geometric)
-        {
-            p.growth = b.number("growth", p.growth);
-            if (!(p.growth >= 1.0))
-                b.fail("growth", "must be >= 1");
-        }
-        else
-        {
-            p.minStep = b.number("min_step", 0.0);
-            if (!(p.minStep >= 0.0) || (p.maxStep > 0.0 && p.minStep > p.maxStep))
-                b.fail("min_step", "must be >= 0 and <= max_step [s]");
-            p.targetChange = b.number("target_change", p.targetChange);
-            if (!(p.targetChange > 0.0))
-                b.fail("target_change", "must be > 0 (relative change per level, e.g. 0.02)");
-            p.growthLimit = b.number("growth_limit", p.growthLimit);
-            if (!(p.growthLimit >= 1.0))
-                b.fail("growth_limit", "must be >= 1");
-            p.shrinkLimit = b.number("shrink_limit", p.shrinkLimit);
-            if (!(p.shrinkLimit > 0.0 && p.shrinkLimit <= 1.0))
-                b.fail("shrink_limit", "must be in (0, 1]");
-        }
-        if (b.has("hit"))
-            p.hit = b.numbers("hit");
-        for (double h : p.hit)
-            if (!(h > 0.0 && h <= p.end))
-                b.fail("hit", "times to land on must lie in (0, end] [s]");
-        if (geometric && p.levels().size() > static_cast<std::size_t>(kMaxTimeLevels))
-            b.fail("first_step", "= " + formatNumber(p.firstStep) + " s with growth " +
-                                     formatNumber(p.growth) + " gives more than the " +
-                                     std::to_string(kMaxTimeLevels) +
-                                     " levels allowed up to end; raise first_step or growth");
-    }
+    p.schedule = schedule::parseSchedule(b, schedule::UniformParameters::keyword, {"load_factor"});
     if (b.has("load_factor"))
     {
         for (const auto& row : b.table("load_factor"))
@@ -336,6 +201,25 @@ TimeParameters TimeParameters::parse(const Block& b)
             p.loadFactor.push_back({row[0], row[1]});
         }
     }
+    // the load-factor corners are landed on, as the hit times
+    auto addCorners = [&p](auto* params)
+    {
+        if (!params)
+            return;
+        for (const auto& row : p.loadFactor)
+            if (row[0] > 0.0 && row[0] < params->end)
+                params->hit.push_back(row[0]);
+    };
+    addCorners(p.schedule.get<schedule::GeometricParameters>());
+    addCorners(p.schedule.get<schedule::AdaptiveParameters>());
+    if (auto* adaptive = p.schedule.get<schedule::AdaptiveParameters>())
+    {
+        if (adaptive->errorTolerance != 0.0)
+            b.fail("error_tolerance", "is for coupled runs only (coupling.time): a standalone "
+                                      "adaptive schedule follows target_change; remove it");
+        adaptive->resolveFirstStep(relaxationTimes);
+    }
+    p.schedule.validate();
     return p;
 }
 
@@ -404,16 +288,7 @@ SolidConfig SolidConfig::fromRoot(const Block& root, const std::string& file)
     if (c.loads.hasGravity && !m.has("density"))
         m.fail("density", "missing: loads.gravity needs the density [kg/m^3]");
     if (auto t = s.optionalBlock("time"))
-    {
-        c.time = TimeParameters::parse(*t);
-        if (c.time.type == "adaptive" && c.time.firstStep == 0.0)
-        {
-            const auto& tau = c.material.pronyTimes;
-            if (tau.empty())
-                t->fail("first_step", "missing: give it for a material without Prony times [s]");
-            c.time.firstStep = *std::min_element(tau.begin(), tau.end()) / 10.0;
-        }
-    }
+        c.time = TimeParameters::parse(*t, c.material.relaxationTimes());
     if (auto o = s.optionalBlock("output"))
         c.output = OutputParameters::parse(*o, dir);
     else
@@ -471,28 +346,19 @@ std::string SolidConfig::echo() const
           << "}\n";
     for (const auto& f : loads.forces)
         o << "    - force: {surface: " << f.surface << ", total: " << vec(f.total) << "}\n";
-    if (time.present)
     {
-        o << "  time: {type: " << time.type << ", end: " << time.end;
-        if (time.type == "uniform")
-            o << ", dt: " << time.dt;
-        if (time.type == "geometric" || time.type == "adaptive")
-            o << ", first_step: " << time.firstStep << ", max_step: " << time.maxStep;
-        if (time.type == "geometric")
-            o << ", growth: " << time.growth;
-        if (time.type == "adaptive")
-            o << ", min_step: " << time.minStep << ", target_change: " << time.targetChange
-              << ", growth_limit: " << time.growthLimit << ", shrink_limit: " << time.shrinkLimit;
-        if (time.type != "adaptive")
-            o << ", levels: " << time.levels().size();
+        std::string coefficients = time.schedule.echo(); // "{key: value, ...}"
+        coefficients = coefficients.substr(1, coefficients.size() - 2);
+        o << "  time: {type: " << time.schedule.type() << (coefficients.empty() ? "" : ", ")
+          << coefficients;
+        if (const auto schedule = time.schedule.make(); schedule->plannedLevels() > 0)
+            o << ", levels: " << schedule->plannedLevels();
         o << ", load_factor: [";
         for (std::size_t i = 0; i < time.loadFactor.size(); ++i)
             o << (i ? ", " : "") << "[" << time.loadFactor[i][0] << ", " << time.loadFactor[i][1]
               << "]";
         o << "]}\n";
     }
-    else
-        o << "  # no time block: one static level\n";
     o << "  output: {folder: " << output.folder << ", vtu: " << (output.vtu ? "true" : "false")
       << ", format: " << (output.binary ? "binary" : "ascii") << ", every: " << output.every
       << ", watch: " << output.watch.size() << " points}\n";

@@ -6,6 +6,8 @@
 #include "linalg/SparseDirectSolver.hpp"
 #include "material/Material.hpp"
 #include "material/MaterialParameters.hpp"
+#include "schedule/Planned.hpp"
+#include "schedule/Registry.hpp"
 
 #include <array>
 #include <optional>
@@ -51,47 +53,22 @@ struct LoadParameters
     static LoadParameters parse(const Block& b);
 };
 
-// Caps of the input size: levels of a time block, watched points of the output block.
-constexpr long kMaxTimeLevels = 1000000;
+// Cap of the input size: watched points of the output block.
 constexpr std::size_t kMaxWatchPoints = 1000;
 
-// Time levels of a standalone run: t_0 = 0 (dt = 0, instantaneous), then by `type`:
-//   uniform    t_n = n dt up to end (the default when type is omitted)
-//   list       the given times (strictly increasing, first 0)
-//   geometric  t_1 = first_step, dt_{k+1} = growth dt_k (capped at max_step) up to end
-//   adaptive   dt_{k+1} = dt_k clamp(target_change / change_k, shrink_limit, growth_limit) within
-//              [min_step, max_step], change_k = max|u_k - u_{k-1}| / max|u_k| over the nodes;
-//              first_step 0 = a tenth of the shortest Prony time
-// geometric/adaptive land exactly on `end`, on the `hit` times and on the load_factor corners.
-// loads(t) = loadFactor(t) * configured loads; loadFactor piecewise linear in t.
+// Time levels of a standalone run: a schedule of the schedule layer by `type` (schedule/
+// Registry.hpp: steady, uniform (the default when type is omitted), list, geometric, adaptive;
+// adaptive follows change_k = max|u_k - u_{k-1}| / max|u_k| over the nodes), plus the load
+// factor: loads(t) = loadFactor(t) * configured loads, piecewise linear in t. The load-factor
+// corners inside (0, end) are landed on exactly by geometric/adaptive (added to their `hit`).
+// No time block: one static level at t = 0 (steady).
 struct TimeParameters
 {
-    bool present = false;         // no time block: one static level at t = 0
-    std::string type = "uniform"; // uniform | list | geometric | adaptive
-    double dt = 0.0;              // uniform [s]
-    double end = 0.0;             // uniform, geometric, adaptive [s]
-    std::vector<double> times;    // list [s]
-    double firstStep = 0.0;       // geometric (> 0), adaptive (0: min tau / 10) [s]
-    double growth = 1.5;          // geometric
-    double maxStep = 0.0;         // geometric, adaptive [s]; 0 = unlimited
-    double minStep = 0.0;         // adaptive [s]
-    double targetChange = 0.02;   // adaptive
-    double growthLimit = 2.0;     // adaptive
-    double shrinkLimit = 0.5;     // adaptive
-    std::vector<double> hit;      // geometric, adaptive: times to land on [s]
+    schedule::ScheduleParameters schedule = schedule::SteadyParameters{};
     std::vector<std::array<double, 2>> loadFactor; // (t, factor), t increasing
     double factorAt(double t) const;
-    // All level times t_0 = 0, t_1, ... for uniform, list and geometric (and {0} without a time
-    // block); adaptive: empty (the times follow the solution, see nextStep()).
-    std::vector<double> levels() const;
-    // The times a geometric/adaptive schedule lands on exactly, sorted, in (0, end].
-    std::vector<double> marks() const;
-    // Next level time after `time` for geometric/adaptive: `step` [s] shortened to land on the
-    // next mark (and stretched to it when less than a fifth of a step would be left).
-    double nextTime(double time, double step) const;
-    // Adaptive: the step after one of `lastStep` [s] whose relative change was `change` [-].
-    double nextStep(double lastStep, double change) const;
-    static TimeParameters parse(const Block& b);
+    // Reads the time block; an adaptive first_step of 0 becomes min(relaxationTimes) / 10.
+    static TimeParameters parse(const Block& b, const std::vector<double>& relaxationTimes);
 };
 
 struct WatchPoint

@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// A layer's strategies by keyword (accelerators, mappings): the chosen strategy's parsed
-// coefficients, type-erased, and the registry entry {name, keys, parse} of each strategy.
-// A strategy's parameter struct P provides
+// A layer's strategies by keyword (accelerators, mappings, time schedules): the chosen strategy's
+// parsed coefficients, type-erased, and the registry entry {name, keys, parse} of each strategy. A
+// strategy's parameter struct P provides
 //   static constexpr const char* keyword;          // `type:` value and the coefficient block's
 //   name using Strategy = <the class>;                  // constructed from P, derived from Product
 //   static const std::vector<std::string>& keys(); // the coefficient keys, as documented
 //   static P parse(const config::Block& layer);    // reads its block layer.<keyword> (required or
-//                                                  // optional, defaults for absent keys)
+//                                                  // optional, defaults for absent keys); in a
+//                                                  // flat layer (time) its keys beside `type`
 //   void validate() const;                         // std::runtime_error naming <layer>.<key>
 //   std::string echo() const;                      // "{key: value, ...}" for the start-up echo
 // and the layer lists strategyType<P, Product>() once in its registry.

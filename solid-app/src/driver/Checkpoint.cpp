@@ -69,7 +69,8 @@ void CheckpointStore::write(const DriverState& d, const fe::CommittedState& soli
 {
     const fs::path dir = fs::path(folder_) / levelFolderName(d.level);
     // Every step is collective: a rank that fails makes all ranks throw the same message.
-    const auto step = [&](bool allRanks, const std::function<void()>& action) {
+    const auto step = [&](bool allRanks, const std::function<void()>& action)
+    {
         std::string error;
         if (allRanks || rank_ == 0)
         {
@@ -85,60 +86,68 @@ void CheckpointStore::write(const DriverState& d, const fe::CommittedState& soli
         throwIfAnyRankFailed(comm_, error);
     };
     step(false, [&] { fs::create_directories(dir); });
-    step(true, [&] {
-        io::ArchiveWriter s;
-        s.put("ranks", size_);
-        s.put("displacement", solid.displacement);
-        s.put("external_forces", solid.externalForces);
-        s.put("load_factor", solid.loadFactor);
-        s.put("cells", solid.cells);
-        s.put("history", solid.history);
-        s.commit((dir / ("solid_rank_" + std::to_string(rank_) + ".bin")).string());
-        if (rank_ != 0)
-            return;
-        io::ArchiveWriter w;
-        w.put("level", d.level);
-        w.put("ranks", size_);
-        w.put("time", d.time);
-        w.put("last_step", d.lastStep);
-        w.put("interface_displacement", d.interfaceDisplacement);
-        w.put("previous_interface_displacement", d.previousInterfaceDisplacement);
-        w.putText("accelerator_type", d.accelerator.type);
-        w.put("accelerator_sizes", toDoubles(d.accelerator.sizes));
-        w.put("accelerator_values", d.accelerator.values);
-        w.put("relaxation_scale", d.relaxationScale);
-        w.put("level_measures", std::vector<double>{d.firstResidual, d.pathError});
-        w.put("accepted_times", d.acceptedTimes);
-        w.put("totals_int", std::vector<int>{d.couplingIterations, d.fluidIterations, d.factorizations});
-        w.put("totals_seconds", std::vector<double>{d.wallSeconds, d.fluidSeconds, d.solidSeconds,
-                                                     d.mappingSeconds});
-        w.commit((dir / "driver.bin").string());
-    });
-    step(false, [&] {
-        std::ostringstream latest;
-        latest.precision(17);
-        latest << "level " << d.level << "\ntime " << d.time << "\nfolder " << levelFolderName(d.level) << "\n";
-        io::writeFileAtomically((fs::path(folder_) / "latest").string(), latest.str());
-        // Prune. Folders of levels after this one are stale (an earlier, longer run in the same
-        // folder, or the levels a restart went back over): remove them, else they would count
-        // as the newest and this run's own checkpoints would be pruned. Of the others keep the
-        // newest `keep`.
-        std::vector<fs::path> levels;
-        for (const auto& entry : fs::directory_iterator(folder_))
-        {
-            const std::string name = entry.path().filename().string();
-            if (!entry.is_directory() || name.rfind("level_", 0) != 0)
-                continue;
-            if (name > levelFolderName(d.level))
-                fs::remove_all(entry.path());
-            else
-                levels.push_back(entry.path());
-        }
-        std::sort(levels.begin(), levels.end());
-        for (std::size_t i = 0; i + keep_ < levels.size(); ++i)
-            if (levels[i] != dir)
-                fs::remove_all(levels[i]);
-    });
+    step(true,
+         [&]
+         {
+             io::ArchiveWriter s;
+             s.put("ranks", size_);
+             s.put("displacement", solid.displacement);
+             s.put("external_forces", solid.externalForces);
+             s.put("load_factor", solid.loadFactor);
+             s.put("cells", solid.cells);
+             s.put("history", solid.history);
+             s.commit((dir / ("solid_rank_" + std::to_string(rank_) + ".bin")).string());
+             if (rank_ != 0)
+                 return;
+             io::ArchiveWriter w;
+             w.put("level", d.level);
+             w.put("ranks", size_);
+             w.put("time", d.time);
+             w.put("last_step", d.lastStep);
+             w.put("interface_displacement", d.interfaceDisplacement);
+             w.put("previous_interface_displacement", d.previousInterfaceDisplacement);
+             w.put("interface_force", d.interfaceForce);
+             w.put("previous_interface_force", d.previousInterfaceForce);
+             w.putText("accelerator_type", d.accelerator.type);
+             w.put("accelerator_sizes", toDoubles(d.accelerator.sizes));
+             w.put("accelerator_values", d.accelerator.values);
+             w.put("relaxation_scale", d.relaxationScale);
+             w.put("level_measures", std::vector<double>{d.firstResidual, d.pathError});
+             w.put("accepted_times", d.acceptedTimes);
+             w.put("totals_int",
+                   std::vector<int>{d.couplingIterations, d.fluidIterations, d.factorizations});
+             w.put("totals_seconds", std::vector<double>{d.wallSeconds, d.fluidSeconds,
+                                                         d.solidSeconds, d.mappingSeconds});
+             w.commit((dir / "driver.bin").string());
+         });
+    step(false,
+         [&]
+         {
+             std::ostringstream latest;
+             latest.precision(17);
+             latest << "level " << d.level << "\ntime " << d.time << "\nfolder "
+                    << levelFolderName(d.level) << "\n";
+             io::writeFileAtomically((fs::path(folder_) / "latest").string(), latest.str());
+             // Prune. Folders of levels after this one are stale (an earlier, longer run in the
+             // same folder, or the levels a restart went back over): remove them, else they would
+             // count as the newest and this run's own checkpoints would be pruned. Of the others
+             // keep the newest `keep`.
+             std::vector<fs::path> levels;
+             for (const auto& entry : fs::directory_iterator(folder_))
+             {
+                 const std::string name = entry.path().filename().string();
+                 if (!entry.is_directory() || name.rfind("level_", 0) != 0)
+                     continue;
+                 if (name > levelFolderName(d.level))
+                     fs::remove_all(entry.path());
+                 else
+                     levels.push_back(entry.path());
+             }
+             std::sort(levels.begin(), levels.end());
+             for (std::size_t i = 0; i + keep_ < levels.size(); ++i)
+                 if (levels[i] != dir)
+                     fs::remove_all(levels[i]);
+         });
 }
 
 CheckpointStore::Loaded CheckpointStore::loadLatest() const
@@ -161,8 +170,9 @@ CheckpointStore::Loaded CheckpointStore::loadLatest() const
                 in >> key; // value of level/time: the archives are authoritative
         }
         if (name.empty())
-            throw std::runtime_error(latestFile + ": malformed (no 'folder' line); restart from an "
-                                                  "older level by editing it, or run from the start");
+            throw std::runtime_error(latestFile +
+                                     ": malformed (no 'folder' line); restart from an "
+                                     "older level by editing it, or run from the start");
         loaded.folder = (fs::path(folder_) / name).string();
         const io::ArchiveReader r((fs::path(loaded.folder) / "driver.bin").string());
         DriverState& d = loaded.driver;
@@ -171,6 +181,10 @@ CheckpointStore::Loaded CheckpointStore::loadLatest() const
         d.lastStep = r.scalar("last_step");
         d.interfaceDisplacement = r.doubles("interface_displacement");
         d.previousInterfaceDisplacement = r.doubles("previous_interface_displacement");
+        if (r.has("interface_force"))
+            d.interfaceForce = r.doubles("interface_force");
+        if (r.has("previous_interface_force"))
+            d.previousInterfaceForce = r.doubles("previous_interface_force");
         d.accelerator.type = r.text("accelerator_type");
         for (double s : r.doubles("accelerator_sizes"))
             d.accelerator.sizes.push_back(static_cast<long>(s));
@@ -199,7 +213,8 @@ CheckpointStore::Loaded CheckpointStore::loadLatest() const
         const int ranks = r.integer("ranks");
         for (int k = 0; k < ranks; ++k)
         {
-            const io::ArchiveReader s((fs::path(loaded.folder) / ("solid_rank_" + std::to_string(k) + ".bin")).string());
+            const io::ArchiveReader s(
+                (fs::path(loaded.folder) / ("solid_rank_" + std::to_string(k) + ".bin")).string());
             fe::CommittedState part;
             part.displacement = s.doubles("displacement");
             part.externalForces = s.doubles("external_forces");

@@ -26,8 +26,8 @@ namespace fsi::driver
 // `coupling.checkpoint` block.
 struct CheckpointParameters
 {
-    int every = 1;   // checkpoint every N accepted levels (0 = never); the last level always
-    int keep = 2;    // complete checkpoints kept on disk (>= 1)
+    int every = 1; // checkpoint every N accepted levels (0 = never); the last level always
+    int keep = 2;  // complete checkpoints kept on disk (>= 1)
     // Throws std::runtime_error naming coupling.checkpoint.<key>.
     void validate() const;
 };
@@ -35,13 +35,16 @@ struct CheckpointParameters
 // What the driver carries from one level to the next.
 struct DriverState
 {
-    int level = 0;              // the accepted level
-    double time = 0.0;          // [s]
-    double lastStep = 0.0;      // dt of that level [s] (schedule state, linear predictor)
+    int level = 0;         // the accepted level
+    double time = 0.0;     // [s]
+    double lastStep = 0.0; // dt of that level [s] (schedule state, linear predictor)
     std::vector<double> interfaceDisplacement;         // u_n, wetted nodes [m]
     std::vector<double> previousInterfaceDisplacement; // u_{n-1} [m]
+    // Nodal fluid forces F_n, F_{n-1} on the wetted nodes [N] (the structural predictors).
+    // Optional in the archive (older checkpoints: empty).
+    std::vector<double> interfaceForce, previousInterfaceForce;
     acceleration::AcceleratorState accelerator;
-    double relaxationScale = 1.0;      // product of the relaxation cures applied so far
+    double relaxationScale = 1.0; // product of the relaxation cures applied so far
     // Measures of the accepted level that steer the next one: its first coupling residual
     // (the forcing term's estimate for the next level's first iterate) [m] and its path error
     // (the adaptive schedule); NaN when unknown. Optional in the archive (older checkpoints).

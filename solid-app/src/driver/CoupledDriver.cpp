@@ -6,8 +6,8 @@
 #include "driver/CouplingLog.hpp"
 #include "driver/FluidAccuracy.hpp"
 #include "driver/RecoveryPolicy.hpp"
-#include "driver/TimeSchedule.hpp"
 #include "mapping/Quality.hpp"
+#include "schedule/Registry.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -40,6 +40,14 @@ mapping::PointCloud toCloud(const std::vector<double>& xyz)
 Eigen::VectorXd toVector(const std::vector<double>& v)
 {
     return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
+}
+
+// last + ratio (last - beforeLast): the value at t_n + ratio (t_n - t_{n-1}) on the line through
+// the last two levels.
+Eigen::VectorXd linearExtrapolation(const Eigen::VectorXd& last, const Eigen::VectorXd& beforeLast,
+                                    double ratio)
+{
+    return last + (last - beforeLast) * ratio;
 }
 
 double rms(const Eigen::VectorXd& v)
@@ -92,6 +100,9 @@ struct CoupledDriver::Impl
     // iterate, the solid's output and the nodal fluid force.
     int n = 0;
     Eigen::VectorXd uLast, uBeforeLast, iterate, solverOutput, nodalForce;
+    // The nodal fluid force of the accepted levels n and n-1 (the structural predictors); empty
+    // when unknown (before the level, after a restart from an older checkpoint).
+    Eigen::VectorXd forceLast, forceBeforeLast;
     double dtLast = 0.0;
     double lastFirstResidual = 0.0; // of the last accepted level [m] (0: none yet)
     mapping::Values nodalDisplacement, pointDisplacement, nodalForceRows; // rank 0 buffers
@@ -143,16 +154,17 @@ struct CoupledDriver::Impl
     std::optional<CheckpointStore::Loaded> loadCheckpoint(const CheckpointStore& store,
                                                           bool restart);
     void setUp(int restartLevel);
-    bool restore(const CheckpointStore::Loaded& saved, TimeSchedule& schedule);
-    LevelRecord solveLevel(TimeSchedule& schedule);
+    bool restore(const CheckpointStore::Loaded& saved, schedule::Schedule& schedule);
+    LevelRecord solveLevel(schedule::Schedule& schedule);
     LevelAttempt attemptLevel(LevelRecord& record, bool usePredictor);
+    std::optional<LevelAttempt> predictFirstIterate(LevelRecord& record, bool usePredictor);
     FluidAccuracy accuracyFor(int iteration, double lastResidual, bool interfaceConverged) const;
     FluidResponse solveFluid(const LevelRecord& record, int iteration,
                              const FluidAccuracy& accuracy, IterationLine& line);
     std::optional<LevelAttempt> judge(LevelRecord& record, const FluidResponse& response,
                                       const FluidAccuracy& accuracy, double firstResidual,
                                       IterationLine& line);
-    void acceptLevel(LevelRecord& record, double levelSeconds, const TimeSchedule& schedule);
+    void acceptLevel(LevelRecord& record, double levelSeconds, const schedule::Schedule& schedule);
     void checkpoint(const CheckpointStore& store, const LevelRecord& record, bool last);
     DriverState state(const LevelRecord& r) const;
 };
@@ -242,7 +254,8 @@ void CoupledDriver::Impl::setUp(int restartLevel)
 
 // Restart: the solid, the accelerator, the schedule and the run totals from the checkpoint.
 // Returns false when the checkpointed run had already reached its last level.
-bool CoupledDriver::Impl::restore(const CheckpointStore::Loaded& saved, TimeSchedule& schedule)
+bool CoupledDriver::Impl::restore(const CheckpointStore::Loaded& saved,
+                                  schedule::Schedule& schedule)
 {
     const DriverState& d = saved.driver;
     std::string error;
@@ -267,6 +280,8 @@ bool CoupledDriver::Impl::restore(const CheckpointStore::Loaded& saved, TimeSche
     failIfAnyRankFailed(error); // a rank-local failure must stop every rank
     uLast = toVector(d.interfaceDisplacement);
     uBeforeLast = toVector(d.previousInterfaceDisplacement);
+    forceLast = toVector(d.interfaceForce);
+    forceBeforeLast = toVector(d.previousInterfaceForce);
     dtLast = d.lastStep;
     lastFirstResidual = d.firstResidual;
     acceptedTimes = d.acceptedTimes;
@@ -293,7 +308,7 @@ bool CoupledDriver::Impl::restore(const CheckpointStore::Loaded& saved, TimeSche
 }
 
 // The level at the schedule's current time: attempts, and the recovery cures between them.
-LevelRecord CoupledDriver::Impl::solveLevel(TimeSchedule& schedule)
+LevelRecord CoupledDriver::Impl::solveLevel(schedule::Schedule& schedule)
 {
     for (int retries = 0;; ++retries)
     {
@@ -353,9 +368,8 @@ FluidAccuracy CoupledDriver::Impl::accuracyFor(int iteration, double lastResidua
 // structural solve. Leaves the solid with the level's last solve (accepted by the caller).
 LevelAttempt CoupledDriver::Impl::attemptLevel(LevelRecord& record, bool usePredictor)
 {
-    iterate = uLast;
-    if (usePredictor && params.predictor == "linear" && record.level >= 2 && dtLast > 0.0)
-        iterate = uLast + (uLast - uBeforeLast) * (record.dt / dtLast);
+    if (auto failed = predictFirstIterate(record, usePredictor))
+        return *failed;
     accelerator->beginLevel();
     double lastResidual = lastFirstResidual;
     bool interfaceConverged = false;
@@ -398,6 +412,42 @@ LevelAttempt CoupledDriver::Impl::attemptLevel(LevelRecord& record, bool usePred
     s << "did not converge in " << params.maxIterations
       << " coupling iterations (|r|/sqrt(n) = " << record.residual << " m)";
     return {Outcome::Capped, s.str(), params.maxIterations};
+}
+
+// The level's first iterate (coupling.predictor): the last accepted interface (constant, and
+// whenever too few levels are known), its linear extrapolation in time (linear), or the solid at
+// the new time under the last level's interface loads (structural: the creep increment under
+// frozen loads) or under loads extrapolated linearly from the last two levels
+// (structural-linear). A failed structural solve ends the attempt (then the recovery cures).
+std::optional<LevelAttempt> CoupledDriver::Impl::predictFirstIterate(LevelRecord& record,
+                                                                     bool usePredictor)
+{
+    iterate = uLast;
+    const bool twoLevels = record.level >= 2 && dtLast > 0.0;
+    const std::string& kind = params.predictor;
+    if (!usePredictor || record.level == 0 || kind == "constant")
+        return std::nullopt;
+    if (kind == "linear")
+    {
+        if (twoLevels)
+            iterate = linearExtrapolation(uLast, uBeforeLast, record.dt / dtLast);
+        return std::nullopt;
+    }
+    if (forceLast.size() != n)
+        return std::nullopt; // restarted from a checkpoint without interface forces
+    Eigen::VectorXd load = forceLast;
+    if (kind == "structural-linear" && twoLevels && forceBeforeLast.size() == n)
+        load = linearExtrapolation(forceLast, forceBeforeLast, record.dt / dtLast);
+    const auto t0 = Clock::now();
+    const auto report =
+        solid.solve({record.time, record.dt}, {std::vector<double>(load.data(), load.data() + n)});
+    summary.solidSeconds += secondsSince(t0);
+    record.newtonIterations += report.newtonIterations;
+    if (!report.converged)
+        return LevelAttempt{Outcome::SolidFailed,
+                            "the structural predictor's solve failed: " + report.message, 0};
+    iterate = toVector(solid.wettedNodeDisplacements());
+    return std::nullopt;
 }
 
 // Maps the iterate to the fluid, solves the flow to `accuracy`, maps the forces back to
@@ -478,7 +528,7 @@ std::optional<LevelAttempt> CoupledDriver::Impl::judge(LevelRecord& record,
 }
 
 void CoupledDriver::Impl::acceptLevel(LevelRecord& record, double levelSeconds,
-                                      const TimeSchedule& schedule)
+                                      const schedule::Schedule& schedule)
 {
     accelerator->endLevel();
     solid.acceptLevel();
@@ -488,7 +538,8 @@ void CoupledDriver::Impl::acceptLevel(LevelRecord& record, double levelSeconds,
     record.relativeChange = norm > 0 ? (solverOutput - uLast).norm() / norm : 0.0;
     if (record.level >= 2 && dtLast > 0.0 && norm > 0)
         record.pathError =
-            (solverOutput - (uLast + (uLast - uBeforeLast) * (record.dt / dtLast))).norm() / norm;
+            (solverOutput - linearExtrapolation(uLast, uBeforeLast, record.dt / dtLast)).norm() /
+            norm;
     MPI_Bcast(&record.firstResidual, 1, MPI_DOUBLE, 0, comm);
     std::string probeText;
     for (const auto& p : probes)
@@ -513,6 +564,8 @@ void CoupledDriver::Impl::acceptLevel(LevelRecord& record, double levelSeconds,
 
     uBeforeLast = uLast;
     uLast = solverOutput;
+    forceBeforeLast = forceLast;
+    forceLast = nodalForce;
     dtLast = record.dt;
     lastFirstResidual = record.firstResidual;
 }
@@ -541,6 +594,9 @@ DriverState CoupledDriver::Impl::state(const LevelRecord& r) const
     d.lastStep = r.dt;
     d.interfaceDisplacement.assign(uLast.data(), uLast.data() + n);
     d.previousInterfaceDisplacement.assign(uBeforeLast.data(), uBeforeLast.data() + n);
+    d.interfaceForce.assign(forceLast.data(), forceLast.data() + forceLast.size());
+    d.previousInterfaceForce.assign(forceBeforeLast.data(),
+                                    forceBeforeLast.data() + forceBeforeLast.size());
     if (rank == 0)
         d.accelerator = accelerator->saveState();
     d.relaxationScale = recovery.relaxationScale();
@@ -565,7 +621,8 @@ RunSummary CoupledDriver::run()
     const CheckpointStore store(m.comm, m.outputFolder + "/checkpoint", m.params.checkpoint.keep);
     const auto saved = m.loadCheckpoint(store, restart_);
     m.setUp(saved ? saved->driver.level : -1);
-    TimeSchedule schedule(m.params.time, m.relaxationTimes);
+    const auto timeLevels = schedule::makeSchedule(m.params.time, m.relaxationTimes);
+    schedule::Schedule& schedule = *timeLevels;
     m.log.say("[driver] " + schedule.describe() + "; acceleration " + m.accelerator->name() +
               ", max " + std::to_string(m.params.maxIterations) + " iterations per level");
     m.log.say("[driver] " + m.forcing.describe());

@@ -39,20 +39,20 @@ namespace fsi::driver
 struct LevelRecord
 {
     int level = 0;
-    double time = 0.0;          // [s]
-    double dt = 0.0;            // [s]
+    double time = 0.0; // [s]
+    double dt = 0.0;   // [s]
     int couplingIterations = 0;
-    int fluidIterations = 0;    // summed over the level's coupling iterations
-    int newtonIterations = 0;   // summed
-    double residual = 0.0;      // |r|/sqrt(n) at acceptance [m]
+    int fluidIterations = 0;  // summed over the level's coupling iterations
+    int newtonIterations = 0; // summed
+    double residual = 0.0;    // |r|/sqrt(n) at acceptance [m]
     bool converged = false;
     Eigen::Vector3d force = Eigen::Vector3d::Zero(); // total fluid force on the structure [N]
     std::vector<double> probes;  // the LevelProbes' values, in their column order
     double relativeChange = 0.0; // |u_n - u_{n-1}| / |u_n| of the interface displacement
     // |u_n - u_lin| / |u_n|, u_lin the linear extrapolation of the two levels before (the
-    // error of the quasi-steady path, TimeSchedule.hpp); NaN when fewer levels exist
+    // error of the quasi-steady path, schedule/Adaptive.hpp); NaN when fewer levels exist
     double pathError = std::numeric_limits<double>::quiet_NaN();
-    double firstResidual = 0.0;  // |r|/sqrt(n) of the level's first coupling iteration [m]
+    double firstResidual = 0.0; // |r|/sqrt(n) of the level's first coupling iteration [m]
     double wallSeconds = 0.0;   // since the start of the run (restarts included)
     int retries = 0;            // automatic cures applied to this level
 };

@@ -78,54 +78,6 @@ mapping::MappingParameters parseMapping(const config::Block& b)
     return p;
 }
 
-TimeScheduleParameters parseTime(const config::Block& b)
-{
-    TimeScheduleParameters p;
-    p.type = b.choice("type", {"steady", "list", "geometric", "adaptive"});
-    if (p.type == "steady")
-        b.allowOnly({"type"});
-    else if (p.type == "list")
-    {
-        b.allowOnly({"type", "times"});
-        p.times = b.numbers("times");
-    }
-    else if (p.type == "geometric")
-    {
-        b.allowOnly({"type", "end", "first_step", "growth", "max_step", "hit"});
-        p.end = b.number("end");
-        p.firstStep = b.number("first_step");
-        p.growth = b.number("growth", p.growth);
-        p.maxStep = b.number("max_step", 0.0);
-        if (b.has("hit"))
-            p.hit = b.numbers("hit");
-    }
-    else
-    {
-        b.allowOnly({"type", "end", "first_step", "min_step", "max_step", "target_change",
-                     "error_tolerance", "growth_limit", "shrink_limit", "hit"});
-        p.end = b.number("end");
-        p.firstStep = b.number("first_step", 0.0);
-        p.minStep = b.number("min_step", 0.0);
-        p.maxStep = b.number("max_step", 0.0);
-        p.targetChange = b.number("target_change", p.targetChange);
-        p.growthLimit = b.number("growth_limit", p.growthLimit);
-        p.shrinkLimit = b.number("shrink_limit", p.shrinkLimit);
-        p.errorTolerance = b.number("error_tolerance", p.errorTolerance);
-        if (b.has("hit"))
-            p.hit = b.numbers("hit");
-    }
-    try
-    {
-        p.validate();
-    }
-    catch (const std::exception& e)
-    {
-        // e.what() already names coupling.time.<key>
-        throw std::runtime_error(b.file() + ": " + e.what());
-    }
-    return p;
-}
-
 } // namespace
 
 CouplingParameters CouplingParameters::parse(const config::Block& b)
@@ -151,7 +103,8 @@ CouplingParameters CouplingParameters::parse(const config::Block& b)
     p.divergenceFactor = b.number("divergence_factor", p.divergenceFactor);
     if (!(p.divergenceFactor > 1))
         b.fail("divergence_factor", "must be > 1");
-    p.predictor = b.choice("predictor", {"constant", "linear"}, p.predictor);
+    p.predictor = b.choice("predictor", {"constant", "linear", "structural", "structural-linear"},
+                           p.predictor);
 
     auto c = b.block("convergence");
     c.allowOnly({"absolute_tolerance", "relative_tolerance"});
@@ -161,7 +114,7 @@ CouplingParameters CouplingParameters::parse(const config::Block& b)
     p.acceleration = parseAcceleration(b.block("acceleration"));
     p.mapping = parseMapping(b.block("mapping"));
     if (auto t = b.optionalBlock("time"))
-        p.time = parseTime(*t);
+        p.time = schedule::parseSchedule(*t, ""); // type required
     if (auto s = b.optionalBlock("section_angle"))
     {
         s->allowOnly({"name", "leading_edge", "trailing_edge", "lift_direction"});
@@ -243,22 +196,10 @@ std::string CouplingParameters::echo() const
       << "\n    overlap_tolerance: " << mapping.overlapTolerance << "\n";
     if (!mapping::mappingType(mapping.type()).keys.empty())
         s << "    " << mapping.type() << ": " << mapping.strategy.echo() << "\n";
-    s << "  time: {type: " << time.type;
-    if (time.type == "list")
-    {
-        s << ", times: [";
-        for (std::size_t i = 0; i < time.times.size(); ++i)
-            s << (i ? ", " : "") << time.times[i];
-        s << "]";
-    }
-    else if (time.type != "steady")
-        s << ", end: " << time.end << ", first_step: " << time.firstStep
-          << ", max_step: " << time.maxStep;
-    if (time.type == "adaptive")
-        s << ", min_step: " << time.minStep << ", target_change: " << time.targetChange
-          << ", error_tolerance: " << time.errorTolerance << ", growth_limit: " << time.growthLimit
-          << ", shrink_limit: " << time.shrinkLimit;
-    s << "}\n";
+    std::string timeCoefficients = time.echo(); // "{key: value, ...}"
+    timeCoefficients = timeCoefficients.substr(1, timeCoefficients.size() - 2);
+    s << "  time: {type: " << time.type() << (timeCoefficients.empty() ? "" : ", ")
+      << timeCoefficients << "}\n";
     if (fluidAccuracy)
         s << "  fluid_accuracy: {final: {force_tolerance: " << fluidAccuracy->finalForceTolerance
           << ", residual_drop: " << fluidAccuracy->finalResidualDrop

@@ -10,8 +10,9 @@
 #include "acceleration/Convergence.hpp"
 #include "driver/Checkpoint.hpp"
 #include "driver/FluidAccuracy.hpp"
-#include "driver/TimeSchedule.hpp"
 #include "mapping/Mapping.hpp"
+#include "schedule/Planned.hpp"
+#include "schedule/Registry.hpp"
 
 #include <array>
 #include <optional>
@@ -31,21 +32,22 @@ namespace fsi::driver
 struct SectionAngleParameters
 {
     std::string name = "section_angle";
-    std::array<double, 3> leadingEdge{};  // reference position [m] (nearest wetted node used)
-    std::array<double, 3> trailingEdge{}; // [m]
+    std::array<double, 3> leadingEdge{};   // reference position [m] (nearest wetted node used)
+    std::array<double, 3> trailingEdge{};  // [m]
     std::array<double, 3> liftDirection{}; // unit vector (normalised on parse)
 };
 
 struct LaunchParameters
 {
-    std::string mode = "mpmd";          // mpmd | port (the --launch flag overrides)
-    std::string portFile = "fsi.port";  // port mode: relative to the run folder
-    double timeout = 600.0;             // [s] longest wait for the fluid's answer
+    std::string mode = "mpmd";         // mpmd | port (the --launch flag overrides)
+    std::string portFile = "fsi.port"; // port mode: relative to the run folder
+    double timeout = 600.0;            // [s] longest wait for the fluid's answer
 };
 
 // `coupling.recovery`: what the driver does, automatically and loudly, when a level fails.
 //   a coupling level diverges (residual growth, NaN) or hits max_iterations
-//       -> the level is redone with a fresh accelerator and the initial relaxation x relaxation_factor
+//       -> the level is redone with a fresh accelerator and the initial relaxation x
+//       relaxation_factor
 //   the structural Newton fails after its own load sub-stepping (level > 0)
 //       -> the level is redone with the time step x step_factor (the schedule then grows back)
 // Each level gets at most max_retries such retries; then the run stops with the diagnosis.
@@ -59,15 +61,15 @@ struct RecoveryParameters
 struct CouplingParameters
 {
     LaunchParameters launch;
-    int maxIterations = 30;              // per level
+    int maxIterations = 30;               // per level
     bool continueOnMaxIterations = false; // false: a level that hits the cap stops the run
-    double divergenceFactor = 1e3;       // stop when |r| grows past this x the level's first |r|
-    std::string predictor = "linear";    // first iterate of a level: constant | linear
+    double divergenceFactor = 1e3;        // stop when |r| grows past this x the level's first |r|
+    std::string predictor = "linear";     // first iterate of a level: constant | linear
     std::optional<FluidAccuracyParameters> fluidAccuracy; // absent: the fluid's own controls
     acceleration::ConvergenceParameters convergence;
     acceleration::AcceleratorParameters acceleration;
     mapping::MappingParameters mapping;
-    TimeScheduleParameters time;
+    schedule::ScheduleParameters time = schedule::SteadyParameters{}; // no block: one level
     std::optional<SectionAngleParameters> sectionAngle;
     CheckpointParameters checkpoint;
     RecoveryParameters recovery;

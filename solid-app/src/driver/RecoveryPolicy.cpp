@@ -20,7 +20,7 @@ std::unique_ptr<acceleration::Accelerator> RecoveryPolicy::makeAccelerator() con
     return accelerator;
 }
 
-std::string RecoveryPolicy::cure(const LevelAttempt& attempt, TimeSchedule& schedule,
+std::string RecoveryPolicy::cure(const LevelAttempt& attempt, schedule::Schedule& schedule,
                                  std::unique_ptr<acceleration::Accelerator>& accelerator)
 {
     std::ostringstream s;
@@ -39,7 +39,8 @@ std::string RecoveryPolicy::cure(const LevelAttempt& attempt, TimeSchedule& sche
     relaxationScale_ *= recovery_.relaxationFactor;
     accelerator = makeAccelerator();
     s << "redoing the level from its start value with a fresh " << accelerator->name()
-      << " accelerator, initial relaxation x" << relaxationScale_ << " (kept for the rest of the run)";
+      << " accelerator, initial relaxation x" << relaxationScale_
+      << " (kept for the rest of the run)";
     return s.str();
 }
 
@@ -48,7 +49,8 @@ std::string RecoveryPolicy::fixFor(Outcome outcome)
     switch (outcome)
     {
     case Outcome::Capped:
-        return ": raise coupling.max_iterations, loosen the tolerance, or set on_max_iterations: continue";
+        return ": raise coupling.max_iterations, loosen the tolerance, or set on_max_iterations: "
+               "continue";
     case Outcome::Diverged:
         return ": lower the initial relaxation or use iqn-ils";
     default:

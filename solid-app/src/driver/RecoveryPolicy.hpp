@@ -13,7 +13,7 @@
 
 #include "acceleration/Accelerator.hpp"
 #include "driver/CouplingParameters.hpp"
-#include "driver/TimeSchedule.hpp"
+#include "schedule/Schedule.hpp"
 
 #include <memory>
 #include <string>
@@ -47,7 +47,7 @@ public:
 
     // Applies the cure for a failed attempt (may cut the schedule's step or replace the
     // accelerator) and returns what it did, for the log; empty: no cure applies, nothing changed.
-    std::string cure(const LevelAttempt& attempt, TimeSchedule& schedule,
+    std::string cure(const LevelAttempt& attempt, schedule::Schedule& schedule,
                      std::unique_ptr<acceleration::Accelerator>& accelerator);
 
     // Retries allowed per level.
