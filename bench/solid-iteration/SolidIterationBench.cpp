@@ -58,6 +58,7 @@ struct Args
 {
     std::string config, mesh, schedule, interface, out = "/tmp/solid-iteration-bench";
     bool output = true, quiet = false;
+    double refactorDrift = -1.0; // < 0: the solver's default
 };
 
 [[noreturn]] void usage(const std::string& what)
@@ -90,6 +91,8 @@ Args parse(int argc, char** argv)
             a.interface = next();
         else if (key == "--out")
             a.out = next();
+        else if (key == "--refactor-drift")
+            a.refactorDrift = std::stod(next());
         else if (key == "--no-output")
             a.output = false;
         else if (key == "--quiet")
@@ -268,7 +271,10 @@ int run(const Args& args)
     const mesh::Mesh mesh =
         mesh::readGmsh(cfg.mesh.file, {cfg.mesh.volume, setup::surfaceGroups(cfg)}, true);
     const auto law = material::makeMaterial(cfg.material, cfg.kinematics);
-    fe::StructuralSolver solid(MPI_COMM_WORLD, mesh, *law, setup::problemFromConfig(cfg));
+    fe::ProblemDefinition problem = setup::problemFromConfig(cfg);
+    if (args.refactorDrift >= 0.0)
+        problem.refactorShearDrift = args.refactorDrift;
+    fe::StructuralSolver solid(MPI_COMM_WORLD, mesh, *law, problem);
     const auto [setupWall, setupCpu] = setupWatch.stop();
     const std::vector<double> xyz = solid.wettedNodeCoordinates();
     std::vector<int> watchNodes;
