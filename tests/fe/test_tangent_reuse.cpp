@@ -7,6 +7,7 @@
 // factorization whenever the tangent changes.
 #include "FeTestSupport.hpp"
 #include "MpiEnvironment.hpp"
+#include "NonlinearView.hpp"
 
 #include <gtest/gtest.h>
 
@@ -19,35 +20,7 @@ using fsi::testing::TestCell;
 
 namespace
 {
-// The law, but declared nonlinear: StructuralSolver then runs the full Newton path (cell
-// tangents, no factorization reuse, no linear update).
-class NonlinearView final : public material::Material
-{
-public:
-    explicit NonlinearView(const material::Material& law) : law_(law) {}
-    std::string name() const override { return law_.name(); }
-    std::size_t historySize() const override { return law_.historySize(); }
-    void evaluate(const material::Vector6& strain, const material::TimeStep& step,
-                  const double* history, material::Vector6& stress,
-                  material::Matrix6& tangent) const override
-    {
-        law_.evaluate(strain, step, history, stress, tangent);
-    }
-    void updateHistory(const material::Vector6& strain, const material::TimeStep& step,
-                       const double* history, double* next) const override
-    {
-        law_.updateHistory(strain, step, history, next);
-    }
-    material::Vector6 acceptedStress(const material::Vector6& strain,
-                                     const double* history) const override
-    {
-        return law_.acceptedStress(strain, history);
-    }
-    void initialiseHistory(double* history) const override { law_.initialiseHistory(history); }
-
-private:
-    const material::Material& law_;
-};
+using fsi::testing::NonlinearView;
 
 const mesh::Mesh& beam(TestCell cell)
 {
