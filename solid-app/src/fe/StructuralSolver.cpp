@@ -406,7 +406,7 @@ bool StructuralSolver::linearTangentFromParts()
     muValues_ = mu;
     const double drift = problem_.refactorShearDrift;
     if (factorizationsSeen_ > 0 && drift > 0.0 && std::abs(mu - muFactorized_) > drift * mu)
-        linear_->factorize();
+        linear_->factorizeAtNextSolve();
     return true;
 }
 

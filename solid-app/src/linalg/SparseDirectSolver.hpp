@@ -188,6 +188,11 @@ public:
     // is returned on EVERY rank. residualAllowance as in solve().
     void solveSummedRhs(std::vector<double>& partialRhsAndSolution, double residualAllowance = 0.0);
 
+    // reuseFactorization: the next solve factorizes the current values instead of running CG
+    // on the stale factor (the caller knows the matrix drifted too far). Collective decision:
+    // every rank calls it.
+    void factorizeAtNextSolve() { refreshFactor_ = true; }
+
     // Broadcast a rank-0 vector to all ranks (resized on the others).
     void broadcastFromRoot(std::vector<double>& vector) const;
 
