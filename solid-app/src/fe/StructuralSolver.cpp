@@ -100,6 +100,30 @@ private:
     material::Matrix6 D_;
 };
 
+// A law affine in the strain, stress = D strain + offset, the offset of each integration point
+// passed as its 6-double "history": a linear law's stress without evaluating it.
+class AffineLaw final : public material::Material
+{
+public:
+    explicit AffineLaw(const material::Matrix6& D) : D_(D) {}
+    std::string name() const override { return "affine"; }
+    std::size_t historySize() const override { return 6; }
+    bool isLinearInStrain() const override { return true; }
+    void evaluate(const Vector6& strain, const material::TimeStep&, const double* offset,
+                  Vector6& stress, material::Matrix6& tangent) const override
+    {
+        stress = D_ * strain + Eigen::Map<const Vector6>(offset);
+        tangent = D_;
+    }
+    void updateHistory(const Vector6&, const material::TimeStep&, const double*,
+                       double*) const override
+    {
+    }
+
+private:
+    material::Matrix6 D_;
+};
+
 // The Voigt tangent lambda m m^T + mu diag(2, 2, 2, 1, 1, 1) (engineering shear) of the moduli.
 material::Matrix6 isotropicVoigt(double lambda, double mu)
 {
@@ -418,6 +442,30 @@ double StructuralSolver::linearSolveAllowance(double ref) const
     return 0.1 * (nw.residualTolerance * ref + nw.absoluteTolerance);
 }
 
+bool StructuralSolver::affineStressFor(const material::TimeStep& step)
+{
+    if (!linearProblem_)
+        return false;
+    if (offsetsVersion_ == historyVersion_ && offsetsStep_.time == step.time &&
+        offsetsStep_.dt == step.dt)
+        return true;
+    const std::size_t hs = law_.historySize();
+    const std::size_t points = static_cast<std::size_t>(pointOffset_.back());
+    stressOffsets_.resize(6 * points);
+    Vector6 stress;
+    affineTangent_ = linearLawTangent(law_, step);
+    material::Matrix6 D;
+    for (std::size_t p = 0; p < points; ++p)
+    {
+        law_.evaluate(Vector6::Zero(), step, hs ? committedHistory_.data() + p * hs : nullptr,
+                      stress, D);
+        Eigen::Map<Vector6>(stressOffsets_.data() + 6 * p) = stress;
+    }
+    offsetsStep_ = step;
+    offsetsVersion_ = historyVersion_;
+    return true;
+}
+
 bool StructuralSolver::assemble(const std::vector<double>& u, bool withMatrix,
                                 std::vector<double>& fint)
 {
@@ -438,7 +486,13 @@ bool StructuralSolver::assemble(const std::vector<double>& u, bool withMatrix,
         std::fill(values_.begin(), values_.end(), 0.0);
         ++elementTangentAssemblies_;
     }
-    const std::size_t hs = law_.historySize();
+    // forces only, linear problem: stress = D strain + offset, no law evaluation
+    const bool affine = !withMatrix && affineStressFor(step_);
+    const AffineLaw affineLaw(affineTangent_);
+    const material::Material& law =
+        affine ? static_cast<const material::Material&>(affineLaw) : law_;
+    const std::size_t hs = affine ? 6 : law_.historySize();
+    const double* history = affine ? stressOffsets_.data() : committedHistory_.data();
     Eigen::VectorXd fe;
     Eigen::MatrixXd Ke;
     int ok = 1;
@@ -456,8 +510,8 @@ bool StructuralSolver::assemble(const std::vector<double>& u, bool withMatrix,
                 ue(i, a) = u[3 * conn[a] + i];
         try
         {
-            cellResponse(cq, ue, law_, problem_.kinematics, step_,
-                         hs ? committedHistory_.data() + pointOffset_[k] * hs : nullptr, fe,
+            cellResponse(cq, ue, law, problem_.kinematics, step_,
+                         hs ? history + pointOffset_[k] * hs : nullptr, fe,
                          withMatrix ? &Ke : nullptr);
         }
         catch (const material::InadmissibleDeformation&)
@@ -863,6 +917,7 @@ void StructuralSolver::acceptLevel()
             }
         }
         committedHistory_.swap(next);
+        ++historyVersion_;
     }
     uCommitted_ = u_;
     fextCommitted_ = fextLast_;
@@ -937,6 +992,7 @@ void StructuralSolver::restoreCommittedState(const std::vector<CommittedState>& 
         std::copy(from, from + count,
                   committedHistory_.begin() + static_cast<std::ptrdiff_t>(pointOffset_[k] * hs));
     }
+    ++historyVersion_;
     linearUpdateReady_ = false;
     uCommitted_ = u_ = parts[0].displacement;
     fextCommitted_ = fextLast_ = parts[0].externalForces;

@@ -203,6 +203,11 @@ private:
     // assembled at the first call). False when the law's tangent is not isotropic (then the
     // element loop assembles it).
     bool linearTangentFromParts();
+    // Linear problem: stressOffsets_ hold the stress at zero strain of every own integration
+    // point for `step` and the committed history, so that stress = D(dt) strain + offset (the
+    // law is affine in the strain); the force-only assemblies of a level then evaluate no law.
+    // Built at the first call for a step/history; false for a nonlinear problem.
+    bool affineStressFor(const material::TimeStep& step);
     // The residual allowance of a linear solve inside Newton: a tenth of Newton's tolerance
     // for the reference force ref [N] (see the header comment).
     double linearSolveAllowance(double ref) const;
@@ -256,6 +261,10 @@ private:
     bool isotropicPartsTried_ = false;
     double muValues_ = 0.0, muFactorized_ = 0.0; // mu of values_ / of the last factorization
     int factorizationsSeen_ = 0;
+    std::vector<double> stressOffsets_; // 6 per own point [Pa] (affineStressFor)
+    material::Matrix6 affineTangent_ = material::Matrix6::Zero();
+    material::TimeStep offsetsStep_{-1.0, -1.0};
+    int historyVersion_ = 0, offsetsVersion_ = -1; // committed history changes / offsets built
     int elementTangentAssemblies_ = 0;
 
     std::vector<double> u_, uCommitted_;
