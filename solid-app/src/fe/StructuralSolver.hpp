@@ -28,7 +28,11 @@
 // the matrix). A new dt changes the tangent: the solve runs CG preconditioned by the last
 // factorization (linalg::DirectSolverOptions::reuseFactorization) and stops once the residual is
 // a tenth of Newton's tolerance (residualTolerance * max(|f_ext|, |f_int|) + absoluteTolerance),
-// then checks it with one residual assembly.
+// then checks it with one residual assembly; that assembly evaluates stress = D(dt) strain + the
+// point's stress at zero strain (built once per level: 6 doubles per integration point), not
+// the law. A shear modulus that drifted more than ProblemDefinition::refactorShearDrift from the
+// factorized one is refactorized at the level's first solve (its re-solves are then one
+// back-substitution each).
 #pragma once
 #include "fe/ElementKernel.hpp"
 #include "fe/Settings.hpp"
