@@ -120,3 +120,69 @@ TEST(FactorReuse, OffByDefault)
     EXPECT_EQ(solver.factorizationCount(), 2);
     EXPECT_EQ(solver.reusedSolveCount(), 0);
 }
+
+// A right-hand side of zero on a stale factor: x = 0, no factorization (it used to factorize).
+TEST(FactorReuse, ZeroRightHandSideNeedsNoFactorization)
+{
+    DirectSolverOptions options;
+    options.reuseFactorization = true;
+    SparseDirectSolver solver(MPI_COMM_WORLD, options);
+    Matrix m = matrix(0.1);
+    solver.setPattern(n, m.rows, m.cols);
+    solver.setValues(m.values);
+    std::vector<double> x(n, 1.0);
+    solver.solve(x);
+    solver.setValues(matrix(0.105).values);
+    x.assign(n, 0.0);
+    solver.solve(x);
+    EXPECT_EQ(solver.factorizationCount(), 1);
+    if (rankOfWorld() == 0)
+        for (double v : x)
+            ASSERT_EQ(v, 0.0);
+}
+
+// residualAllowance: CG on the stale factor stops once |b - A x| <= allowance (fewer
+// iterations than for 1e-10 |b|) and meets it; a current factor ignores it.
+TEST(FactorReuse, ResidualAllowanceStopsCgEarlier)
+{
+    DirectSolverOptions options;
+    options.reuseFactorization = true;
+    options.refactorAfterIterations = 100; // keep the stale factor for both solves
+    SparseDirectSolver solver(MPI_COMM_WORLD, options);
+    Matrix m = matrix(0.1);
+    solver.setPattern(n, m.rows, m.cols);
+    solver.setValues(m.values);
+    std::vector<double> b(n), x;
+    double bNorm = 0.0;
+    for (int i = 0; i < n; ++i)
+    {
+        b[i] = std::sin(0.05 * i) + 1.0;
+        bNorm += b[i] * b[i];
+    }
+    bNorm = std::sqrt(bNorm);
+    x = b;
+    solver.solve(x);
+    const double s1 = 0.3; // three times stiffer diagonal shift: several CG iterations
+    solver.setValues(matrix(s1).values);
+    x = b;
+    solver.solve(x);
+    const int tight = solver.reuseIterationCount();
+    x = b;
+    solver.solve(x, 1e-4 * bNorm);
+    const int loose = solver.reuseIterationCount() - tight;
+    EXPECT_EQ(solver.factorizationCount(), 1);
+    EXPECT_EQ(solver.reusedSolveCount(), 2);
+    EXPECT_LT(loose, tight);
+    EXPECT_GE(loose, 1);
+    if (rankOfWorld() == 0)
+    {
+        double r2 = 0.0; // |b - A x|_2
+        for (int i = 0; i < n; ++i)
+        {
+            double y = (2.0 + s1) * x[i] - (i > 0 ? x[i - 1] : 0.0) - (i + 1 < n ? x[i + 1] : 0.0);
+            r2 += (y - b[i]) * (y - b[i]);
+        }
+        EXPECT_LE(std::sqrt(r2), 1e-4 * bNorm);
+        EXPECT_GT(std::sqrt(r2), 1e-10 * bNorm); // it did stop early
+    }
+}

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <numeric>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -73,6 +74,91 @@ void warnIfLocking(const mesh::Mesh& mesh, const material::Material& law, Formul
                  "element formulation: displacements come out too small; use Hex8/Hex20/Hex27 with "
                  "solid.element.type: projected-dilatation (or Tet10)\n",
                  mesh.source.c_str(), names.c_str(), nu, formulationName(formulation));
+}
+
+// A law whose tangent is a given matrix D (stress = D strain, no history): the element kernel
+// assembles the parts of an isotropic linear tangent with it.
+class FixedTangentLaw final : public material::Material
+{
+public:
+    explicit FixedTangentLaw(const material::Matrix6& D) : D_(D) {}
+    std::string name() const override { return "fixed-tangent"; }
+    std::size_t historySize() const override { return 0; }
+    bool isLinearInStrain() const override { return true; }
+    void evaluate(const Vector6& strain, const material::TimeStep&, const double*, Vector6& stress,
+                  material::Matrix6& tangent) const override
+    {
+        stress = D_ * strain;
+        tangent = D_;
+    }
+    void updateHistory(const Vector6&, const material::TimeStep&, const double*,
+                       double*) const override
+    {
+    }
+
+private:
+    material::Matrix6 D_;
+};
+
+// A law affine in the strain, stress = D strain + offset, the offset of each integration point
+// passed as its 6-double "history": a linear law's stress without evaluating it.
+class AffineLaw final : public material::Material
+{
+public:
+    explicit AffineLaw(const material::Matrix6& D) : D_(D) {}
+    std::string name() const override { return "affine"; }
+    std::size_t historySize() const override { return 6; }
+    bool isLinearInStrain() const override { return true; }
+    void evaluate(const Vector6& strain, const material::TimeStep&, const double* offset,
+                  Vector6& stress, material::Matrix6& tangent) const override
+    {
+        stress = D_ * strain + Eigen::Map<const Vector6>(offset);
+        tangent = D_;
+    }
+    void updateHistory(const Vector6&, const material::TimeStep&, const double*,
+                       double*) const override
+    {
+    }
+
+private:
+    material::Matrix6 D_;
+};
+
+// The Voigt tangent lambda m m^T + mu diag(2, 2, 2, 1, 1, 1) (engineering shear) of the moduli.
+material::Matrix6 isotropicVoigt(double lambda, double mu)
+{
+    material::Matrix6 D = material::Matrix6::Zero();
+    D.topLeftCorner<3, 3>().setConstant(lambda);
+    for (int i = 0; i < 3; ++i)
+        D(i, i) += 2.0 * mu;
+    for (int i = 3; i < 6; ++i)
+        D(i, i) = mu;
+    return D;
+}
+
+// (lambda, mu) of an isotropic tangent D; nullopt when D differs from isotropicVoigt(lambda, mu)
+// by more than 1e-13 of its largest entry.
+std::optional<std::pair<double, double>> isotropicModuli(const material::Matrix6& D)
+{
+    const double lambda = D(0, 1), mu = D(3, 3);
+    const double scale = D.cwiseAbs().maxCoeff();
+    if (!D.allFinite() || !(scale > 0.0) ||
+        (D - isotropicVoigt(lambda, mu)).cwiseAbs().maxCoeff() > 1e-13 * scale)
+        return std::nullopt;
+    return std::make_pair(lambda, mu);
+}
+
+// The law's tangent at `step` for a law linear in the strain (independent of strain and
+// history): evaluated at zero strain with a virgin history.
+material::Matrix6 linearLawTangent(const material::Material& law, const material::TimeStep& step)
+{
+    std::vector<double> history(law.historySize());
+    if (!history.empty())
+        law.initialiseHistory(history.data());
+    Vector6 stress;
+    material::Matrix6 D;
+    law.evaluate(Vector6::Zero(), step, history.empty() ? nullptr : history.data(), stress, D);
+    return D;
 }
 
 } // namespace
@@ -284,6 +370,102 @@ void StructuralSolver::buildExternalLoads(double factor, const InterfaceLoads& i
     }
 }
 
+bool StructuralSolver::linearTangentFromParts()
+{
+    if (!linearProblem_)
+        return false;
+    const auto moduli = isotropicModuli(linearLawTangent(law_, step_));
+    if (!moduli)
+        return false;
+    if (!isotropicPartsTried_)
+    {
+        isotropicPartsTried_ = true;
+        const auto& cells = mesh_.cells;
+        const FixedTangentLaw lambdaLaw(isotropicVoigt(1.0, 0.0)), muLaw(isotropicVoigt(0.0, 1.0));
+        lambdaPart_.assign(values_.size(), 0.0);
+        muPart_.assign(values_.size(), 0.0);
+        Eigen::VectorXd fe;
+        Eigen::MatrixXd Ke;
+        std::vector<int> dofs;
+        for (std::size_t k = 0; k < ownCells_.size(); ++k)
+        {
+            const int c = ownCells_[k];
+            const int n = cells.numNodes(c);
+            CellQuadrature cq{n, pointOffset_[k + 1] - pointOffset_[k],
+                              quad_.data() + quadOffset_[k],
+                              dilatationModeCount(cells.types[c], problem_.formulation)};
+            const Eigen::Matrix3Xd zero = Eigen::Matrix3Xd::Zero(3, n);
+            dofs.resize(3 * n);
+            for (int a = 0; a < n; ++a)
+                for (int i = 0; i < 3; ++i)
+                    dofs[3 * a + i] = equation_[3 * cells.nodes(c)[a] + i];
+            for (auto [law, part] :
+                 {std::make_pair(&lambdaLaw, &lambdaPart_), std::make_pair(&muLaw, &muPart_)})
+            {
+                cellResponse(cq, zero, *law, Kinematics::SmallStrain, step_, nullptr, fe, &Ke);
+                for (int r = 0; r < 3 * n; ++r)
+                {
+                    if (dofs[r] < 0)
+                        continue;
+                    for (int s = 0; s < 3 * n; ++s)
+                        if (dofs[s] >= 0 && dofs[s] <= dofs[r])
+                            (*part)[pattern_->csr.find(dofs[r], dofs[s])] += Ke(r, s);
+                }
+            }
+        }
+        elementTangentAssemblies_ += 2;
+    }
+    if (lambdaPart_.empty())
+        return false;
+    const auto [lambda, mu] = *moduli;
+    if (linear_->factorizationCount() != factorizationsSeen_) // factorized since: at muValues_
+    {
+        factorizationsSeen_ = linear_->factorizationCount();
+        muFactorized_ = muValues_;
+    }
+    std::vector<double> values(lambdaPart_.size()); // values_ stays the element loop's buffer
+    for (std::size_t k = 0; k < values.size(); ++k)
+        values[k] = lambda * lambdaPart_[k] + mu * muPart_[k];
+    linear_->setValues(std::move(values));
+    muValues_ = mu;
+    const double drift = problem_.refactorShearDrift;
+    if (factorizationsSeen_ > 0 && drift > 0.0 && std::abs(mu - muFactorized_) > drift * mu)
+        linear_->factorizeAtNextSolve();
+    return true;
+}
+
+double StructuralSolver::linearSolveAllowance(double ref) const
+{
+    if (!linearProblem_)
+        return 0.0;
+    const auto& nw = problem_.newton;
+    return 0.1 * (nw.residualTolerance * ref + nw.absoluteTolerance);
+}
+
+bool StructuralSolver::affineStressFor(const material::TimeStep& step)
+{
+    if (!linearProblem_)
+        return false;
+    if (offsetsVersion_ == historyVersion_ && offsetsStep_.time == step.time &&
+        offsetsStep_.dt == step.dt)
+        return true;
+    const std::size_t hs = law_.historySize();
+    const std::size_t points = static_cast<std::size_t>(pointOffset_.back());
+    stressOffsets_.resize(6 * points);
+    Vector6 stress;
+    affineTangent_ = linearLawTangent(law_, step);
+    material::Matrix6 D;
+    for (std::size_t p = 0; p < points; ++p)
+    {
+        law_.evaluate(Vector6::Zero(), step, hs ? committedHistory_.data() + p * hs : nullptr,
+                      stress, D);
+        Eigen::Map<Vector6>(stressOffsets_.data() + 6 * p) = stress;
+    }
+    offsetsStep_ = step;
+    offsetsVersion_ = historyVersion_;
+    return true;
+}
+
 bool StructuralSolver::assemble(const std::vector<double>& u, bool withMatrix,
                                 std::vector<double>& fint)
 {
@@ -296,9 +478,21 @@ bool StructuralSolver::assemble(const std::vector<double>& u, bool withMatrix,
     } timer{start, assemblySeconds_};
     const auto& cells = mesh_.cells;
     fint.assign(numDofs(), 0.0);
+    // a linear problem's tangent from its parts; the element loop then computes forces only
+    if (withMatrix && linearTangentFromParts())
+        withMatrix = false;
     if (withMatrix)
+    {
         std::fill(values_.begin(), values_.end(), 0.0);
-    const std::size_t hs = law_.historySize();
+        ++elementTangentAssemblies_;
+    }
+    // forces only, linear problem: stress = D strain + offset, no law evaluation
+    const bool affine = !withMatrix && affineStressFor(step_);
+    const AffineLaw affineLaw(affineTangent_);
+    const material::Material& law =
+        affine ? static_cast<const material::Material&>(affineLaw) : law_;
+    const std::size_t hs = affine ? 6 : law_.historySize();
+    const double* history = affine ? stressOffsets_.data() : committedHistory_.data();
     Eigen::VectorXd fe;
     Eigen::MatrixXd Ke;
     int ok = 1;
@@ -316,8 +510,8 @@ bool StructuralSolver::assemble(const std::vector<double>& u, bool withMatrix,
                 ue(i, a) = u[3 * conn[a] + i];
         try
         {
-            cellResponse(cq, ue, law_, problem_.kinematics, step_,
-                         hs ? committedHistory_.data() + pointOffset_[k] * hs : nullptr, fe,
+            cellResponse(cq, ue, law, problem_.kinematics, step_,
+                         hs ? history + pointOffset_[k] * hs : nullptr, fe,
                          withMatrix ? &Ke : nullptr);
         }
         catch (const material::InadmissibleDeformation&)
@@ -463,7 +657,7 @@ bool StructuralSolver::newton(const std::vector<double>& fext, double factor,
                 if (equation_[dof] >= 0)
                     du[equation_[dof]] = R[dof];
         const double linearStart = MPI_Wtime();
-        linear_->solveSummedRhs(du);
+        linear_->solveSummedRhs(du, linearSolveAllowance(ref));
         linearSeconds_ += MPI_Wtime() - linearStart;
         // line search (energy form, Crisfield): find alpha with s(alpha) = du . R(u + alpha du)
         // small against s(0) = du . R(u) > 0; the residual NORM may grow on a good Newton step
@@ -554,28 +748,32 @@ SolveReport StructuralSolver::solve(const material::TimeStep& step, const Interf
 }
 
 // A linear level (small strain, a law linear in the strain) whose last solve converged at the
-// same step and load factor: R(u + du) = R(u) + (f_new - f_old) - K du, so du = K^-1 (f_new -
-// f_old) keeps the converged residual, with the factorization already in place. One residual
-// assembly (no matrix) checks it and gives f_int for the reactions. Declined (false, nothing
-// changed) for non-finite loads or a residual above the tolerance: Newton then runs.
+// same step and load factor: R(u + du) = f_new - f_int(u) - K du exactly, so du = K^-1 (f_new -
+// f_int(u)) -- the load change plus the residual the last solve left -- with the level's tangent
+// as it is (no assembly; CG on the last factorization if dt changed since) to a tenth of Newton's
+// tolerance. One residual assembly (no matrix) checks it and gives f_int for the reactions.
+// Declined (false, nothing changed) for non-finite loads or a residual above the tolerance:
+// Newton then runs.
 bool StructuralSolver::linearUpdate(const std::vector<double>& fTarget, SolveReport& report)
 {
     std::vector<double> du(numFree_, 0.0);
-    double change2 = 0.0;
+    double change2 = 0.0, fe0 = 0.0, fi0 = 0.0;
     for (int dof = 0; dof < numDofs(); ++dof)
     {
+        fe0 += fTarget[dof] * fTarget[dof];
+        fi0 += fintConverged_[dof] * fintConverged_[dof];
         const int eq = equation_[dof];
         if (eq < 0)
             continue;
-        const double d = fTarget[dof] - fextLast_[dof];
+        const double d = fTarget[dof] - fintConverged_[dof];
         change2 += d * d;
         if (rank_ == 0)
             du[eq] = d;
     }
-    if (!std::isfinite(change2))
+    if (!std::isfinite(change2) || !std::isfinite(fi0))
         return false; // Newton diagnoses non-finite loads
     const double linearStart = MPI_Wtime();
-    linear_->solveSummedRhs(du);
+    linear_->solveSummedRhs(du, linearSolveAllowance(std::max(std::sqrt(fe0), std::sqrt(fi0))));
     linearSeconds_ += MPI_Wtime() - linearStart;
     std::vector<double> u = u_, fint;
     for (int dof = 0; dof < numDofs(); ++dof)
@@ -719,6 +917,7 @@ void StructuralSolver::acceptLevel()
             }
         }
         committedHistory_.swap(next);
+        ++historyVersion_;
     }
     uCommitted_ = u_;
     fextCommitted_ = fextLast_;
@@ -793,6 +992,7 @@ void StructuralSolver::restoreCommittedState(const std::vector<CommittedState>& 
         std::copy(from, from + count,
                   committedHistory_.begin() + static_cast<std::ptrdiff_t>(pointOffset_[k] * hs));
     }
+    ++historyVersion_;
     linearUpdateReady_ = false;
     uCommitted_ = u_ = parts[0].displacement;
     fextCommitted_ = fextLast_ = parts[0].externalForces;

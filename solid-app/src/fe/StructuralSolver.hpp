@@ -16,10 +16,23 @@
 //
 // Level semantics: solve() may be called any number of times for the same level; each call
 // starts from the last converged solution (warm start; for a linear problem -- small strain and
-// a law linear in the strain -- a re-solve with new loads only is a single back-substitution) and
-// evaluates the material with the history committed by the last acceptLevel(). acceptLevel()
-// requires the last solve to have converged (throws otherwise). Loads given to solve() REPLACE
-// those of the previous call.
+// a law linear in the strain -- a re-solve with new loads only is one linear solve with the
+// level's tangent, no Newton loop and no tangent assembly) and evaluates the material with the
+// history committed by the last acceptLevel(). acceptLevel() requires the last solve to have
+// converged (throws otherwise). Loads given to solve() REPLACE those of the previous call.
+//
+// Cost of a linear problem (small strain, law linear in the strain) per solve: the tangent is
+// never assembled cell by cell after the first level when the law's tangent is isotropic
+// (lambda m m^T + mu diag(2, 2, 2, 1, 1, 1), every small-strain law here): it is
+// lambda K_lambda + mu K_mu with both parts assembled once (memory: two extra value arrays of
+// the matrix). A new dt changes the tangent: the solve runs CG preconditioned by the last
+// factorization (linalg::DirectSolverOptions::reuseFactorization) and stops once the residual is
+// a tenth of Newton's tolerance (residualTolerance * max(|f_ext|, |f_int|) + absoluteTolerance),
+// then checks it with one residual assembly; that assembly evaluates stress = D(dt) strain + the
+// point's stress at zero strain (built once per level: 6 doubles per integration point), not
+// the law. A shear modulus that drifted more than ProblemDefinition::refactorShearDrift from the
+// factorized one is refactorized at the level's first solve (its re-solves are then one
+// back-substitution each).
 #pragma once
 #include "fe/ElementKernel.hpp"
 #include "fe/Settings.hpp"
@@ -68,6 +81,11 @@ struct ProblemDefinition
     // MUMPS settings (ordering, BLR, refinement, threads, verbosity); symmetric and
     // reuseFactorization are set by the solver (reuse for linear problems).
     linalg::DirectSolverOptions linearSolver;
+    // Linear problem with an isotropic law: refactorize the tangent at a level whose shear
+    // modulus differs from the factorized one by more than this fraction (CG on the old factor
+    // needs more iterations the more it drifted); 0: never (CG on the first factorization, as
+    // long as it converges).
+    double refactorShearDrift = 0.05;
     bool printIterations = false; // rank 0 prints Newton progress
 };
 
@@ -173,6 +191,9 @@ public:
     const linalg::SparseDirectSolver& linearSolver() const { return *linear_; }
     int factorizationCount() const;
     int analysisCount() const;
+    // Element loops that computed cell tangents (a linear problem with an isotropic law: the
+    // two parts of its tangent, once; otherwise one per Newton iteration).
+    int elementTangentAssemblyCount() const { return elementTangentAssemblies_; }
     int rank() const { return rank_; }
     int ranks() const { return size_; }
     int ownedCells() const { return static_cast<int>(ownCells_.size()); }
@@ -182,6 +203,18 @@ private:
                            double loadFactor);
     bool linearUpdate(const std::vector<double>& fTarget, SolveReport& report);
     bool assemble(const std::vector<double>& u, bool withMatrix, std::vector<double>& fint);
+    // Linear problem, isotropic law: values_ = lambda K_lambda + mu K_mu for step_ (the parts
+    // assembled at the first call). False when the law's tangent is not isotropic (then the
+    // element loop assembles it).
+    bool linearTangentFromParts();
+    // Linear problem: stressOffsets_ hold the stress at zero strain of every own integration
+    // point for `step` and the committed history, so that stress = D(dt) strain + offset (the
+    // law is affine in the strain); the force-only assemblies of a level then evaluate no law.
+    // Built at the first call for a step/history; false for a nonlinear problem.
+    bool affineStressFor(const material::TimeStep& step);
+    // The residual allowance of a linear solve inside Newton: a tenth of Newton's tolerance
+    // for the reference force ref [N] (see the header comment).
+    double linearSolveAllowance(double ref) const;
     void buildExternalLoads(double factor, const InterfaceLoads& interface,
                             std::vector<double>& f) const;
     void applyPrescribed(double factor, std::vector<double>& u) const;
@@ -226,6 +259,17 @@ private:
     struct Pattern;
     std::unique_ptr<Pattern> pattern_;
     std::vector<double> values_;
+    // lambda and mu parts of a linear problem's tangent (values_ layout); empty: not built yet
+    // or not applicable (isotropicPartsTried_).
+    std::vector<double> lambdaPart_, muPart_;
+    bool isotropicPartsTried_ = false;
+    double muValues_ = 0.0, muFactorized_ = 0.0; // mu of values_ / of the last factorization
+    int factorizationsSeen_ = 0;
+    std::vector<double> stressOffsets_; // 6 per own point [Pa] (affineStressFor)
+    material::Matrix6 affineTangent_ = material::Matrix6::Zero();
+    material::TimeStep offsetsStep_{-1.0, -1.0};
+    int historyVersion_ = 0, offsetsVersion_ = -1; // committed history changes / offsets built
+    int elementTangentAssemblies_ = 0;
 
     std::vector<double> u_, uCommitted_;
     std::vector<double> fextCommitted_;

@@ -176,12 +176,22 @@ public:
 
     // Centralized: rank 0 passes the rhs (size n) and gets the solution in place;
     // other ranks' argument is ignored and left untouched. Calls factorize() first.
-    void solve(std::vector<double>& rhsAndSolution);
+    // residualAllowance (same units as b, >= 0; the same on every rank): a solve by CG on a stale
+    // factor (reuseFactorization) may stop once |b - A x|_2 <= max(reuseTolerance |b|_2,
+    // residualAllowance), e.g. a Newton step whose caller needs the residual below its own
+    // tolerance only; |b|_2 <= residualAllowance gives x = 0 (nothing to do). Solves with a
+    // current factor ignore it. A zero rhs gives x = 0 without a factorization.
+    void solve(std::vector<double>& rhsAndSolution, double residualAllowance = 0.0);
 
     // Distributed-assembly helper: every rank passes its partial rhs (size n, its own
     // elements' contributions); they are summed onto rank 0, solved, and the solution
-    // is returned on EVERY rank.
-    void solveSummedRhs(std::vector<double>& partialRhsAndSolution);
+    // is returned on EVERY rank. residualAllowance as in solve().
+    void solveSummedRhs(std::vector<double>& partialRhsAndSolution, double residualAllowance = 0.0);
+
+    // reuseFactorization: the next solve factorizes the current values instead of running CG
+    // on the stale factor (the caller knows the matrix drifted too far). Collective decision:
+    // every rank calls it.
+    void factorizeAtNextSolve() { refreshFactor_ = true; }
 
     // Broadcast a rank-0 vector to all ranks (resized on the others).
     void broadcastFromRoot(std::vector<double>& vector) const;
@@ -189,6 +199,9 @@ public:
     int analysisCount() const { return analysisCount_; }
     int factorizationCount() const { return factorizationCount_; }
     int solveCount() const { return solveCount_; }
+    // MUMPS solve phases (forward and backward substitution with the factor): one per solve
+    // with a current factor, one per CG iteration (+1) on a stale one, one per refinement step.
+    int backSubstitutionCount() const { return backSubstitutions_; }
     // Solves done by CG on a stale factorization (reuseFactorization) and their CG iterations.
     int reusedSolveCount() const { return reusedSolves_; }
     int reuseIterationCount() const { return reuseIterations_; }
@@ -209,7 +222,7 @@ private:
     void multiply(std::vector<double>& x, std::vector<double>& y) const;
     // CG preconditioned by the stale factorization; false (b untouched) when it misses the
     // tolerance. Collective; b/x significant on rank 0.
-    bool solveWithStaleFactor(std::vector<double>& rhsAndSolution);
+    bool solveWithStaleFactor(std::vector<double>& rhsAndSolution, double residualAllowance);
     // With a BLR factor: residual check and iterative refinement of x for b (rank 0 data);
     // true when |b - A x| <= refinementTolerance |b|. Collective.
     bool refine(const std::vector<double>& b, std::vector<double>& x);
@@ -235,6 +248,7 @@ private:
     int solveCount_ = 0;
     int reusedSolves_ = 0;
     int reuseIterations_ = 0;
+    int backSubstitutions_ = 0;
     bool refreshFactor_ = false; // the last CG needed many iterations: factorize next time
     int negativePivots_ = 0;
     long long factorEntries_ = 0;
