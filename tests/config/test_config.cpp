@@ -206,6 +206,17 @@ TEST(SolidConfig, ListGeometricAndAdaptiveSchedules)
               std::string::npos);
 }
 
+TEST(SolidConfig, RefactorShearDrift)
+{
+    EXPECT_DOUBLE_EQ(SolidConfig::load(write(valid)).refactorShearDrift, 0.05); // default
+    const auto c = SolidConfig::load(
+        write(std::string(valid) + "  linear_solver: {refactor_shear_drift: 0.2}\n"));
+    EXPECT_DOUBLE_EQ(c.refactorShearDrift, 0.2);
+    EXPECT_NE(errorOf(std::string(valid) + "  linear_solver: {refactor_shear_drift: -1}\n")
+                  .find("'solid.linear_solver.refactor_shear_drift' must be >= 0"),
+              std::string::npos);
+}
+
 TEST(SolidConfig, LineSearchPolicy)
 {
     EXPECT_EQ(fsi::fe::toString(SolidConfig::load(write(valid)).newton.lineSearch),

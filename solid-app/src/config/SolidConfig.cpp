@@ -70,7 +70,7 @@ linalg::DirectSolverOptions parseLinearSolver(const Block& b)
 {
     b.allowOnly({"verbosity", "ordering", "low_rank", "low_rank_min_size", "low_rank_tolerance",
                  "low_rank_variant", "refinement_tolerance", "max_refinement_steps",
-                 "check_residual", "memory_relaxation", "threads"});
+                 "check_residual", "memory_relaxation", "threads", "refactor_shear_drift"});
     using linalg::LowRank;
     using linalg::Ordering;
     linalg::DirectSolverOptions o;
@@ -283,7 +283,12 @@ SolidConfig SolidConfig::fromRoot(const Block& root, const std::string& file)
     if (auto n = s.optionalBlock("newton"))
         c.newton = parseNewton(*n);
     if (auto l = s.optionalBlock("linear_solver"))
+    {
         c.linearSolver = parseLinearSolver(*l);
+        c.refactorShearDrift = l->number("refactor_shear_drift", c.refactorShearDrift);
+        if (!(c.refactorShearDrift >= 0.0))
+            l->fail("refactor_shear_drift", "must be >= 0 (a fraction, e.g. 0.05; 0 = never)");
+    }
     c.loads = LoadParameters::parse(s.block("loads"));
     if (c.loads.hasGravity && !m.has("density"))
         m.fail("density", "missing: loads.gravity needs the density [kg/m^3]");
@@ -327,7 +332,8 @@ std::string SolidConfig::echo() const
       << ", absolute_tolerance: " << newton.absoluteTolerance
       << ", line_search: " << fe::toString(newton.lineSearch)
       << ", max_load_cuts: " << newton.maxLoadCuts << "}\n";
-    o << "  linear_solver: {verbosity: " << linearSolver.verbosity << "}  # "
+    o << "  linear_solver: {verbosity: " << linearSolver.verbosity
+      << ", refactor_shear_drift: " << refactorShearDrift << "}  # "
       << linalg::describe(linearSolver) << "\n";
     o << "  loads:\n";
     if (loads.hasGravity)

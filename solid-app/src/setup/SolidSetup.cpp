@@ -30,6 +30,7 @@ fe::ProblemDefinition problemFromConfig(const config::SolidConfig& c)
         p.forces.push_back({f.surface, Eigen::Vector3d(f.total[0], f.total[1], f.total[2])});
     p.newton = c.newton;
     p.linearSolver = c.linearSolver;
+    p.refactorShearDrift = c.refactorShearDrift;
     return p;
 }
 
