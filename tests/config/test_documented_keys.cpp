@@ -2,6 +2,7 @@
 // The shipped examples document exactly the keys the registries of the flat strategy blocks
 // accept: solid.material (material/Registry.hpp) in config/solid.example.yaml, and the time
 // blocks (schedule/Registry.hpp) of config/solid.example.yaml and config/coupled.example.yaml.
+#include "config/ExampleSection.hpp"
 #include "material/Material.hpp"
 #include "material/MaterialParameters.hpp"
 #include "material/Registry.hpp"
@@ -29,21 +30,10 @@ struct DocumentedBlock
 // alternatives commented out).
 DocumentedBlock documentedBlock(const std::string& file, const std::string& section)
 {
-    std::ifstream in(std::string(FSI_SOURCE_DIR) + "/config/" + file);
-    EXPECT_TRUE(in.good()) << file;
-    const std::regex start("^  " + section + ":.*"), end("^  [a-z_]+:.*");
     const std::regex keyLine("^    #? ?([A-Za-z_]+):[^#]*(#.*)?$");
     DocumentedBlock block;
-    bool inside = false;
-    for (std::string line; std::getline(in, line);)
+    for (const std::string& line : fsi::testing::exampleSection(file, section))
     {
-        if (!inside)
-        {
-            inside = std::regex_match(line, start);
-            continue;
-        }
-        if (std::regex_match(line, end))
-            break;
         std::smatch m;
         if (std::regex_match(line, m, keyLine))
         {

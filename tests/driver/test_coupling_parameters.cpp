@@ -3,6 +3,7 @@
 // the file and the key.
 #include "acceleration/Aitken.hpp"
 #include "acceleration/Registry.hpp"
+#include "config/ExampleSection.hpp"
 #include "config/YamlReader.hpp"
 #include "driver/CouplingParameters.hpp"
 #include "mapping/RbfPartitionOfUnity.hpp"
@@ -188,22 +189,12 @@ namespace
 std::map<std::string, std::set<std::string>> documentedKeys(const std::string& section,
                                                             const std::vector<std::string>& names)
 {
-    std::ifstream in(FSI_SOURCE_DIR "/config/coupled.example.yaml");
-    const std::regex start("^  " + section + ":.*"), end("^  [a-z_]+:.*");
     const std::regex keyLine("^( *)([a-z0-9_-]+):.*");
     std::map<std::string, std::set<std::string>> keys;
-    bool inside = false;
     std::string current;
     std::size_t currentIndent = 0;
-    for (std::string line; std::getline(in, line);)
+    for (std::string line : fsi::testing::exampleSection("coupled.example.yaml", section))
     {
-        if (!inside)
-        {
-            inside = std::regex_match(line, start);
-            continue;
-        }
-        if (std::regex_match(line, end))
-            break;
         // uncomment "    #   key:" -> "        key:" (the column of the key is kept)
         line = std::regex_replace(line, std::regex("^( *)# "), "$1  ");
         std::smatch m;
