@@ -83,7 +83,9 @@ TEST(FactorReuse, SmallChangeSolvesByCgOnTheOldFactor)
     solver.solve(x);
     EXPECT_EQ(solver.factorizationCount(), 1);
     if (rankOfWorld() == 0)
+    {
         EXPECT_LT(residual(s0, x, b), 1e-12);
+    }
 
     // s changes by 5 %: CG on the old factor, a handful of iterations, no new factorization
     const double s1 = 0.105;
@@ -94,7 +96,9 @@ TEST(FactorReuse, SmallChangeSolvesByCgOnTheOldFactor)
     EXPECT_EQ(solver.reusedSolveCount(), 1);
     EXPECT_LE(solver.reuseIterationCount(), 6);
     if (rankOfWorld() == 0)
+    {
         EXPECT_LT(residual(s1, x, b), 1e-9);
+    }
 
     // s x 100: CG on the stale factor does not meet the tolerance in time -> factorize
     const double s2 = 10.0;
@@ -103,7 +107,9 @@ TEST(FactorReuse, SmallChangeSolvesByCgOnTheOldFactor)
     solver.solve(x);
     EXPECT_EQ(solver.factorizationCount(), 2);
     if (rankOfWorld() == 0)
+    {
         EXPECT_LT(residual(s2, x, b), 1e-12);
+    }
 }
 
 TEST(FactorReuse, OffByDefault)
@@ -137,8 +143,10 @@ TEST(FactorReuse, ZeroRightHandSideNeedsNoFactorization)
     solver.solve(x);
     EXPECT_EQ(solver.factorizationCount(), 1);
     if (rankOfWorld() == 0)
+    {
         for (double v : x)
             ASSERT_EQ(v, 0.0);
+    }
 }
 
 // residualAllowance: CG on the stale factor stops once |b - A x| <= allowance (fewer

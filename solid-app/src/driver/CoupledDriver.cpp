@@ -50,6 +50,16 @@ Eigen::VectorXd linearExtrapolation(const Eigen::VectorXd& last, const Eigen::Ve
     return last + (last - beforeLast) * ratio;
 }
 
+// The log line of coupling iteration `iteration` of the level `record`, measures still empty.
+IterationLine iterationLine(const LevelRecord& record, int iteration)
+{
+    IterationLine line;
+    line.level = record.level;
+    line.time = record.time;
+    line.iteration = iteration;
+    return line;
+}
+
 double rms(const Eigen::VectorXd& v)
 {
     return v.size() ? v.norm() / std::sqrt(static_cast<double>(v.size())) : 0.0;
@@ -375,7 +385,7 @@ LevelAttempt CoupledDriver::Impl::attemptLevel(LevelRecord& record, bool usePred
     bool interfaceConverged = false;
     for (int it = 1; it <= params.maxIterations; ++it)
     {
-        IterationLine line{record.level, record.time, it};
+        IterationLine line = iterationLine(record, it);
         const FluidAccuracy accuracy = accuracyFor(it, lastResidual, interfaceConverged);
         const FluidResponse response = solveFluid(record, it, accuracy, line);
 
