@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Point clouds for the mapping tests: the same surfaces sampled differently on the two sides.
+// Point clouds for the mapping tests: the same surfaces sampled differently on the two sides;
+// and the fields and measures the tests map and compare.
 #pragma once
 
 #include "mapping/Mapping.hpp"
+
+#include <Eigen/Geometry>
 
 #include <cmath>
 
@@ -65,6 +68,39 @@ inline PointCloud corner(int n, double shift, double offset)
             p.row(row++) << offset, v, u; // wall
         }
     return p;
+}
+
+// f(x) = a + B x, three components (every mapping that reproduces linear fields maps it exactly).
+inline Values linearField(const PointCloud& x)
+{
+    Eigen::Matrix3d b;
+    b << 1.5, -2.0, 0.25, 0.5, 3.0, -1.0, -0.75, 0.1, 2.0;
+    const Eigen::RowVector3d a(0.3, -1.2, 4.0);
+    return (x * b.transpose()).rowwise() + a;
+}
+
+// max |got - want| / max |want| over all entries.
+inline double relativeMaxError(const Values& got, const Values& want)
+{
+    return (got - want).cwiseAbs().maxCoeff() / want.cwiseAbs().maxCoeff();
+}
+
+// Sum of x_i x f_i about the origin.
+inline Eigen::Vector3d totalMoment(const PointCloud& x, const Values& f)
+{
+    Eigen::Vector3d m = Eigen::Vector3d::Zero();
+    for (Eigen::Index i = 0; i < x.rows(); ++i)
+        m += Eigen::Vector3d(x.row(i)).cross(Eigen::Vector3d(f.row(i)));
+    return m;
+}
+
+// Forces on n fluid faces: deterministic, mixed signs, not smooth.
+inline Values faceForces(Eigen::Index n)
+{
+    Values g(n, 3);
+    for (Eigen::Index i = 0; i < n; ++i)
+        g.row(i) << std::sin(1.7 * i), std::cos(0.3 * i) + 0.2, 0.5 - std::sin(2.9 * i + 1.0);
+    return g;
 }
 
 } // namespace fsi::mapping::test

@@ -16,9 +16,7 @@
 #include <stdexcept>
 
 using namespace fsi::mapping;
-using fsi::mapping::test::fluidCylinder;
-using fsi::mapping::test::plate;
-using fsi::mapping::test::solidCylinder;
+using namespace fsi::mapping::test;
 
 namespace
 {
@@ -30,37 +28,6 @@ MappingParameters params(const std::string& type)
     if (auto* w = p.strategy.get<WendlandParameters>())
         w->supportRadius = 0.4; // m: about 3 solid spacings at nTheta = 24
     return p;
-}
-
-// f(x) = a + B x, three components.
-Values linearField(const PointCloud& x)
-{
-    Eigen::Matrix3d b;
-    b << 1.5, -2.0, 0.25, 0.5, 3.0, -1.0, -0.75, 0.1, 2.0;
-    const Eigen::RowVector3d a(0.3, -1.2, 4.0);
-    return (x * b.transpose()).rowwise() + a;
-}
-
-double relativeMaxError(const Values& got, const Values& want)
-{
-    return (got - want).cwiseAbs().maxCoeff() / want.cwiseAbs().maxCoeff();
-}
-
-Eigen::Vector3d totalMoment(const PointCloud& x, const Values& f)
-{
-    Eigen::Vector3d m = Eigen::Vector3d::Zero();
-    for (Eigen::Index i = 0; i < x.rows(); ++i)
-        m += Eigen::Vector3d(x.row(i)).cross(Eigen::Vector3d(f.row(i)));
-    return m;
-}
-
-// Forces on the fluid faces: deterministic, mixed signs, not smooth.
-Values faceForces(Eigen::Index n)
-{
-    Values g(n, 3);
-    for (Eigen::Index i = 0; i < n; ++i)
-        g.row(i) << std::sin(1.7 * i), std::cos(0.3 * i) + 0.2, 0.5 - std::sin(2.9 * i + 1.0);
-    return g;
 }
 
 } // namespace

@@ -18,9 +18,7 @@
 #include <string>
 
 using namespace fsi::mapping;
-using fsi::mapping::test::corner;
-using fsi::mapping::test::fluidCylinder;
-using fsi::mapping::test::solidCylinder;
+using namespace fsi::mapping::test;
 
 namespace
 {
@@ -32,41 +30,12 @@ MappingParameters partitionOfUnity()
     return p;
 }
 
-Values linearField(const PointCloud& x)
-{
-    Eigen::Matrix3d b;
-    b << 1.5, -2.0, 0.25, 0.5, 3.0, -1.0, -0.75, 0.1, 2.0;
-    const Eigen::RowVector3d a(0.3, -1.2, 4.0);
-    return (x * b.transpose()).rowwise() + a;
-}
-
 Values smoothField(const PointCloud& x)
 {
     Values f(x.rows(), 1);
     for (Eigen::Index i = 0; i < x.rows(); ++i)
         f(i, 0) = std::sin(3.0 * x(i, 0)) * std::cos(2.0 * x(i, 1)) + std::sin(4.0 * x(i, 2));
     return f;
-}
-
-double relativeMaxError(const Values& got, const Values& want)
-{
-    return (got - want).cwiseAbs().maxCoeff() / want.cwiseAbs().maxCoeff();
-}
-
-Eigen::Vector3d totalMoment(const PointCloud& x, const Values& f)
-{
-    Eigen::Vector3d m = Eigen::Vector3d::Zero();
-    for (Eigen::Index i = 0; i < x.rows(); ++i)
-        m += Eigen::Vector3d(x.row(i)).cross(Eigen::Vector3d(f.row(i)));
-    return m;
-}
-
-Values faceForces(Eigen::Index n)
-{
-    Values g(n, 3);
-    for (Eigen::Index i = 0; i < n; ++i)
-        g.row(i) << std::sin(1.7 * i), std::cos(0.3 * i) + 0.2, 0.5 - std::sin(2.9 * i + 1.0);
-    return g;
 }
 
 // Relative errors of total force and total moment after mapping forces g on t to s.

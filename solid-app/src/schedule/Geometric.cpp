@@ -14,11 +14,6 @@ namespace
 {
 constexpr double timeEps = 1e-12;
 
-std::vector<double> validTimes(const GeometricParameters& p)
-{
-    p.validate();
-    return p.times();
-}
 } // namespace
 
 const std::vector<std::string>& GeometricParameters::keys()
@@ -64,6 +59,11 @@ std::vector<double> GeometricParameters::times() const
 
 void GeometricParameters::validate() const
 {
+    validTimes();
+}
+
+std::vector<double> GeometricParameters::validTimes() const
+{
     if (!(end > 0.0) || !std::isfinite(end))
         origin.fail("end", "must be > 0 [s]");
     if (!(firstStep > 0.0))
@@ -75,11 +75,13 @@ void GeometricParameters::validate() const
     for (double h : hit)
         if (!(h > 0.0 && h <= end))
             origin.fail("hit", "times to land on must lie in (0, end] [s]");
-    if (times().size() > static_cast<std::size_t>(kMaxTimeLevels))
+    std::vector<double> levels = times();
+    if (levels.size() > static_cast<std::size_t>(kMaxTimeLevels))
         origin.fail("first_step", "= " + config::formatNumber(firstStep) + " s with growth " +
                                       config::formatNumber(growth) + " gives more than the " +
                                       std::to_string(kMaxTimeLevels) +
                                       " levels allowed up to end; raise first_step or growth");
+    return levels;
 }
 
 std::string GeometricParameters::echo() const
@@ -94,7 +96,7 @@ std::string GeometricParameters::echo() const
 }
 
 Geometric::Geometric(const GeometricParameters& params)
-    : PlannedSchedule(validTimes(params)), maxStep_(params.maxStep)
+    : PlannedSchedule(params.validTimes()), maxStep_(params.maxStep)
 {
 }
 

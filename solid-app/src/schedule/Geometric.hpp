@@ -28,7 +28,8 @@ struct GeometricParameters
     static GeometricParameters parse(const config::Block& timeBlock);
     void validate() const; // also: at most kMaxTimeLevels levels
     std::string echo() const;
-    std::vector<double> times() const; // the levels, 0 first (bounded by kMaxTimeLevels + 1)
+    std::vector<double> times() const;      // the levels, 0 first (bounded by kMaxTimeLevels + 1)
+    std::vector<double> validTimes() const; // validate() and times() in one pass
 };
 
 class Geometric final : public PlannedSchedule
