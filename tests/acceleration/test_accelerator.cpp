@@ -117,6 +117,48 @@ TEST(Aitken, ClampsAreAppliedAndTold)
     EXPECT_NE(stiff.lastNote().find("clamped to 0.01"), std::string::npos);
 }
 
+// A non-normal map (twist drives bending: h_12 = 10; eigenvalues 0.1 and 0.6): the Aitken
+// quotient turns negative along some residuals although both eigenvalues are < 1. With the sign
+// kept (the literal eq. 10) the steps cycle and the level does not converge in 200 solver calls;
+// restarting at omega_0 converges. Observed: 51 calls; asserted <= 60.
+TEST(Aitken, RestartsOnANonPositiveFactor)
+{
+    struct NonNormal
+    {
+        Eigen::VectorXd solve(const Eigen::VectorXd& u) const
+        {
+            return Eigen::Vector2d(0.1 * u(0) + 10.0 * u(1) + 1.0, 0.6 * u(1) + 0.3);
+        }
+    } problem;
+    const Eigen::Vector2d fixedPoint(8.5 / 0.9, 0.75); // (I - H) u = b
+    const Eigen::VectorXd u0 = Eigen::VectorXd::Zero(2);
+
+    AitkenParameters signedSteps = aitkenParameters(0.5);
+    signedSteps.negativeFactor = "keep";
+    Aitken literal(signedSteps);
+    EXPECT_FALSE(runLevel(literal, problem, u0, 200, 1e-10).converged);
+
+    Aitken aitken(aitkenParameters(0.5));
+    bool restarted = false;
+    aitken.beginLevel();
+    Eigen::VectorXd u = u0;
+    int calls = 1;
+    for (; calls <= 100; ++calls)
+    {
+        const Eigen::VectorXd output = problem.solve(u);
+        if ((output - u).norm() / std::sqrt(2.0) < 1e-10)
+            break;
+        u = aitken.update(u, output);
+        EXPECT_GT(aitken.lastRelaxation(), 0.0);
+        restarted |=
+            aitken.lastNote().find("restarted at initial_relaxation 0.5") != std::string::npos;
+    }
+    std::printf("aitken (restart on factor <= 0): %d solver calls\n", calls);
+    EXPECT_TRUE(restarted);
+    EXPECT_LE(calls, 60);
+    EXPECT_LT((u - fixedPoint).norm() / fixedPoint.norm(), 1e-8);
+}
+
 TEST(Aitken, InitialPolicyResetOrCarryOver)
 {
     // a = 0.5: Aitken finds omega = 2 exactly in one level (max_relaxation 5).
@@ -136,9 +178,11 @@ TEST(Aitken, InitialPolicyResetOrCarryOver)
             << initial;
     }
 
-    // a = 3: the level ends with omega = -0.5; carried over it is clamped to min_relaxation.
+    // a = 3 (a locally expanding map, negative_factor keep): the level ends with omega = -0.5;
+    // carried over it is clamped to min_relaxation.
     AitkenParameters p = aitkenParameters(0.3);
     p.initial = "carry-over";
+    p.negativeFactor = "keep";
     Aitken aitken(p);
     const ScalarProblem unstable{3.0, 1.0};
     ASSERT_TRUE(runLevel(aitken, unstable, u0, 20, 1e-13).converged);
@@ -192,6 +236,10 @@ TEST(AcceleratorParameters, RejectsBadInputWithOneLineMessages)
     EXPECT_EQ(validationMessage(p),
               "acceleration.initial 'keep' is unknown; use reset or carry-over");
     p.get<AitkenParameters>()->initial = "reset";
+    p.get<AitkenParameters>()->negativeFactor = "flip";
+    EXPECT_EQ(validationMessage(p),
+              "acceleration.negative_factor 'flip' is unknown; use restart or keep");
+    p.get<AitkenParameters>()->negativeFactor = "keep";
     EXPECT_EQ(validationMessage(p), "");
     EXPECT_EQ(p.get<IqnIlsParameters>(), nullptr);
     IqnIlsParameters iqn;

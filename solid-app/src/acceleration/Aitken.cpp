@@ -16,7 +16,7 @@ namespace fsi::acceleration
 const std::vector<std::string>& AitkenParameters::keys()
 {
     static const std::vector<std::string> k{"initial_relaxation", "initial", "max_relaxation",
-                                            "min_relaxation"};
+                                            "min_relaxation", "negative_factor"};
     return k;
 }
 
@@ -29,6 +29,7 @@ AitkenParameters AitkenParameters::parse(const config::Block& layer)
     p.initial = b.choice("initial", {"reset", "carry-over"}, "reset");
     p.maxRelaxation = b.number("max_relaxation", p.maxRelaxation);
     p.minRelaxation = b.number("min_relaxation", p.minRelaxation);
+    p.negativeFactor = b.choice("negative_factor", {"restart", "keep"}, p.negativeFactor);
     return p;
 }
 
@@ -38,6 +39,9 @@ void AitkenParameters::validate() const
     if (initial != "reset" && initial != "carry-over")
         throw std::runtime_error("acceleration.initial '" + initial +
                                  "' is unknown; use reset or carry-over");
+    if (negativeFactor != "restart" && negativeFactor != "keep")
+        throw std::runtime_error("acceleration.negative_factor '" + negativeFactor +
+                                 "' is unknown; use restart or keep");
     if (!(maxRelaxation > 0.0) || !std::isfinite(maxRelaxation))
         throw std::runtime_error("acceleration.max_relaxation must be > 0 (got " +
                                  valueText(maxRelaxation) + "); e.g. 1");
@@ -55,12 +59,14 @@ std::string AitkenParameters::echo() const
 {
     std::ostringstream s;
     s << "{initial_relaxation: " << initialRelaxation << ", initial: " << initial
-      << ", max_relaxation: " << maxRelaxation << ", min_relaxation: " << minRelaxation << "}";
+      << ", max_relaxation: " << maxRelaxation << ", min_relaxation: " << minRelaxation
+      << ", negative_factor: " << negativeFactor << "}";
     return s.str();
 }
 
 Aitken::Aitken(const AitkenParameters& params)
-    : params_(params), carryOver_(params.initial == "carry-over")
+    : params_(params), carryOver_(params.initial == "carry-over"),
+      restartOnNegative_(params.negativeFactor == "restart")
 {
     params_.validate();
 }
@@ -97,6 +103,14 @@ double Aitken::clamp(double omega, const char* what)
     return clamped;
 }
 
+double Aitken::restart(double factor)
+{
+    note_ = "aitken: new omega " + config::formatNumber(factor) +
+            " <= 0 (no contraction along the last residual), restarted at initial_relaxation " +
+            config::formatNumber(params_.initialRelaxation);
+    return params_.initialRelaxation;
+}
+
 Eigen::VectorXd Aitken::update(const Eigen::VectorXd& previousIterate,
                                const Eigen::VectorXd& solverOutput)
 {
@@ -123,7 +137,13 @@ Eigen::VectorXd Aitken::update(const Eigen::VectorXd& previousIterate,
         const Eigen::VectorXd change = residual - previousResidual_;
         const double denominator = change.squaredNorm();
         if (denominator > 0.0 && std::isfinite(denominator))
-            omega_ = clamp(-omega_ * previousResidual_.dot(change) / denominator, "new");
+        {
+            const double factor = -omega_ * previousResidual_.dot(change) / denominator;
+            if (factor <= 0.0 && restartOnNegative_)
+                omega_ = restart(factor);
+            else
+                omega_ = clamp(factor, "new");
+        }
         else
             note_ = "aitken: residual unchanged, omega kept at " + config::formatNumber(omega_);
     }

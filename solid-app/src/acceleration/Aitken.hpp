@@ -7,7 +7,11 @@
 //   r_new
 // First update of a level: "reset" uses omega_0; "carry-over" uses the last omega of the
 // previous converged level clamped to [min_relaxation, max_relaxation] (omega_0 on the first
-// level). Every omega is clamped to min_relaxation <= |omega| <= max_relaxation, sign kept.
+// level). A factor <= 0 says the last residual change was not a contraction along r_prev (with a
+// non-normal interface Jacobian, e.g. twist driving bending, this happens although every
+// eigenvalue is < 1, and signed steps then cycle without converging): negative_factor "restart"
+// (default) restarts from omega_0; "keep" keeps the sign (the literal eq. 10, for a locally
+// expanding map). Every omega is then clamped to min_relaxation <= |omega| <= max_relaxation.
 // If r_new == r_prev (no information) omega_prev is kept. Each of these is told in lastNote().
 // Restart state: values = {last omega of the last converged level} (NaN before the first).
 #pragma once
@@ -20,15 +24,16 @@ namespace fsi::acceleration
 class Aitken;
 
 // Block `aitken: {initial_relaxation: 0.5, initial: reset, max_relaxation: 1, min_relaxation:
-// 1e-3}`.
+// 1e-3, negative_factor: restart}`.
 struct AitkenParameters
 {
     static constexpr const char* keyword = "aitken";
     using Strategy = Aitken;
     double initialRelaxation = std::numeric_limits<double>::quiet_NaN(); // omega_0, required
-    std::string initial = "reset"; // first iteration of a level: "reset" | "carry-over"
-    double maxRelaxation = 1.0;    // |omega| <= max_relaxation
-    double minRelaxation = 1e-3;   // |omega| >= min_relaxation; carry-over into [min, max]
+    std::string initial = "reset";          // first iteration of a level: "reset" | "carry-over"
+    double maxRelaxation = 1.0;             // |omega| <= max_relaxation
+    double minRelaxation = 1e-3;            // |omega| >= min_relaxation; carry-over into [min, max]
+    std::string negativeFactor = "restart"; // factor <= 0: "restart" (omega_0) | "keep" (sign)
 
     static const std::vector<std::string>& keys();
     static AitkenParameters parse(const config::Block& layer); // reads layer.<keyword> (required)
@@ -53,8 +58,10 @@ public:
 
 private:
     double clamp(double omega, const char* what);
+    double restart(double factor); // omega_0, with the note
     AitkenParameters params_;
     bool carryOver_;
+    bool restartOnNegative_;
     int iteration_ = 0;
     double omega_ = std::numeric_limits<double>::quiet_NaN();
     double levelOmega_ = std::numeric_limits<double>::quiet_NaN(); // last omega of last level
