@@ -248,6 +248,11 @@ TEST(AcceleratorParameters, RejectsBadInputWithOneLineMessages)
     p = iqn;
     EXPECT_NE(validationMessage(p).find("acceleration.reuse_levels must be >= 0"),
               std::string::npos);
+    iqn.reuseLevels = 2;
+    iqn.firstUpdate = "newton";
+    p = iqn;
+    EXPECT_EQ(validationMessage(p),
+              "acceleration.first_update 'newton' is unknown; use relaxation or quasi-newton");
     ConstantParameters constant;
     p = constant;
     EXPECT_NE(validationMessage(p).find("acceleration.relaxation must be in (0, 2)"),

@@ -13,8 +13,9 @@ namespace fsi::acceleration
 
 const std::vector<std::string>& QuasiNewtonParameters::commonKeys()
 {
-    static const std::vector<std::string> k{"initial_relaxation", "max_columns", "reuse_levels",
-                                            "filter", "filter_tolerance"};
+    static const std::vector<std::string> k{"initial_relaxation", "max_columns",
+                                            "reuse_levels",       "filter",
+                                            "filter_tolerance",   "first_update"};
     return k;
 }
 
@@ -25,6 +26,7 @@ void QuasiNewtonParameters::parseCommon(const config::Block& b)
     reuseLevels = b.integer("reuse_levels", reuseLevels);
     filter = b.choice("filter", {"qr-column", "qr-matrix"}, filter);
     filterTolerance = b.number("filter_tolerance", filterTolerance);
+    firstUpdate = b.choice("first_update", {"relaxation", "quasi-newton"}, firstUpdate);
 }
 
 std::string QuasiNewtonParameters::echoCommon() const
@@ -32,7 +34,7 @@ std::string QuasiNewtonParameters::echoCommon() const
     std::ostringstream s;
     s << "initial_relaxation: " << initialRelaxation << ", max_columns: " << maxColumns
       << ", reuse_levels: " << reuseLevels << ", filter: " << filter
-      << ", filter_tolerance: " << filterTolerance;
+      << ", filter_tolerance: " << filterTolerance << ", first_update: " << firstUpdate;
     return s.str();
 }
 
@@ -51,6 +53,9 @@ void QuasiNewtonParameters::validate() const
     if (filter != "qr-column" && filter != "qr-matrix")
         throw std::runtime_error("acceleration.filter '" + filter +
                                  "' is unknown; use qr-column or qr-matrix");
+    if (firstUpdate != "relaxation" && firstUpdate != "quasi-newton")
+        throw std::runtime_error("acceleration.first_update '" + firstUpdate +
+                                 "' is unknown; use relaxation or quasi-newton");
 }
 
 QuasiNewton::QuasiNewton(const QuasiNewtonParameters& params)
@@ -89,7 +94,7 @@ Eigen::VectorXd QuasiNewton::update(const Eigen::VectorXd& previousIterate,
             currentW_.pop_back();
         }
     }
-    const bool first = iteration_ == 0;
+    const bool relaxFirst = iteration_ == 0 && params_.firstUpdate == "relaxation";
     ++iteration_;
     previousOutput_ = solverOutput;
     previousResidual_ = residual;
@@ -99,9 +104,9 @@ Eigen::VectorXd QuasiNewton::update(const Eigen::VectorXd& previousIterate,
     for (const Columns& level : past_)
         m += level.v.cols();
     m = std::min<Eigen::Index>(m, params_.maxColumns);
-    lastColumns_ = first ? 0 : static_cast<int>(m);
+    lastColumns_ = relaxFirst ? 0 : static_cast<int>(m);
     lastKept_ = 0;
-    if (first || m == 0)
+    if (relaxFirst || m == 0)
     {
         omega_ = params_.initialRelaxation;
         return previousIterate + omega_ * residual;

@@ -5,9 +5,11 @@
 //   V = [r_i - r_{i-1}, ...],  W = [u_hat_i - u_hat_{i-1}, ...]
 // newest first: this level, then the last reuse_levels converged levels, at most max_columns;
 // filters V by a QR decomposition (QrFilter.hpp) and leaves the update from the kept columns to
-// the method (step()). The first update of every level uses constant relaxation
-// u_i = u_{i-1} + omega_0 r_i, as does any update whose V is empty or filtered away (told in
-// lastNote()). A new method (e.g. IQN-IMVJ) is one class that implements step().
+// the method (step()). The first update of a level uses constant relaxation
+// u_i = u_{i-1} + omega_0 r_i (first_update "relaxation", the default) or, with
+// first_update "quasi-newton", the method's step from the reused levels' columns when there are
+// any (preCICE: initial relaxation not forced). Any update whose V is empty or filtered away
+// relaxes (told in lastNote()). A new method (e.g. IQN-IMVJ) is one class that implements step().
 // Restart state: sizes = {n, L, m_1..m_L} (L stored levels, m_l columns), values = for each
 // level V then W, column-major.
 #pragma once
@@ -29,6 +31,8 @@ struct QuasiNewtonParameters
     int reuseLevels = 0;              // converged levels whose columns are reused (0 = none)
     double filterTolerance = 1e-3;    // QR filter epsilon, see QrFilter.hpp
     std::string filter = "qr-column"; // "qr-column" (|R_ii| < eps |v_i|) | "qr-matrix" (eps ||R||)
+    std::string firstUpdate = "relaxation"; // a level's first update: "relaxation" (omega_0) |
+                                            // "quasi-newton" (reused columns, if any)
 
     // The keys above, for a method's keys() / parse() / echo() (a method may add its own).
     static const std::vector<std::string>& commonKeys();
