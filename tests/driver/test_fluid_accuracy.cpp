@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The forcing term of the inexact fluid solves (FluidAccuracy.hpp) and the progress clock.
+// The forcing term of the inexact fluid solves (FluidAccuracy.hpp), the progress clock and the
+// coupling log's CSV quoting.
 #include "driver/CouplingLog.hpp"
 #include "driver/FluidAccuracy.hpp"
 
@@ -60,7 +61,8 @@ TEST(ForcingTerm, InvalidParametersNameTheKey)
     }
     catch (const std::runtime_error& e)
     {
-        EXPECT_NE(std::string(e.what()).find("coupling.fluid_accuracy.max_force_tolerance"), std::string::npos)
+        EXPECT_NE(std::string(e.what()).find("coupling.fluid_accuracy.max_force_tolerance"),
+                  std::string::npos)
             << e.what();
     }
 }
@@ -95,4 +97,14 @@ TEST(ProgressClock, GrowingStepsCountTheLevelsLeft)
     EXPECT_NEAR(clock.remaining(400.0, 100.0), 6 * 10.0, 1e-9);
     // unlimited: 16, 32, 64, 128, 256 (-> 511): 5 levels
     EXPECT_NEAR(clock.remaining(400.0, 0.0), 5 * 10.0, 1e-9);
+}
+
+// coupling.csv's note column is free text ("clamped to 1 (min_relaxation 0.001, max_relaxation
+// 1)"): quoted so that every row keeps the header's column count.
+TEST(CouplingLog, NotesAreQuotedCsvFields)
+{
+    EXPECT_EQ(fsi::driver::csvField("plain note"), "plain note");
+    EXPECT_EQ(fsi::driver::csvField(""), "");
+    EXPECT_EQ(fsi::driver::csvField("a, b"), "\"a, b\"");
+    EXPECT_EQ(fsi::driver::csvField("say \"x\""), "\"say \"\"x\"\"\"");
 }

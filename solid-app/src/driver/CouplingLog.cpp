@@ -31,7 +31,8 @@ double ProgressClock::remaining(double endTime, double maxStep) const
     if (levels < 1 || !(steps_[first] > 0.0))
         return -1.0;
     const double costPerLevel = (walls_.back() - walls_[first]) / levels;
-    const double growth = std::clamp(std::pow(steps_.back() / steps_[first], 1.0 / levels), 1.0, 10.0);
+    const double growth =
+        std::clamp(std::pow(steps_.back() / steps_[first], 1.0 / levels), 1.0, 10.0);
     double t = times_.back(), dt = steps_.back();
     int left = 0;
     while (t < endTime * (1 - 1e-12) && left < 100000)
@@ -93,8 +94,9 @@ void CouplingLog::keepRowsUpTo(int level)
         const std::string file = folder_ + name;
         std::ifstream in(file);
         if (!in)
-            throw std::runtime_error(file + ": missing; a restart needs the logs of the checkpointed "
-                                            "run in the same --out folder");
+            throw std::runtime_error(file +
+                                     ": missing; a restart needs the logs of the checkpointed "
+                                     "run in the same --out folder");
         std::string line, kept;
         std::getline(in, line);
         kept = line + "\n";
@@ -115,15 +117,26 @@ void CouplingLog::keepRowsUpTo(int level)
         throw std::runtime_error("cannot append to the coupling logs in " + folder_);
 }
 
+std::string csvField(const std::string& text)
+{
+    if (text.find_first_of(",\"\n\r") == std::string::npos)
+        return text;
+    std::string quoted = "\"";
+    for (const char c : text)
+        quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return quoted + '"';
+}
+
 void CouplingLog::iteration(const IterationLine& l)
 {
     if (rank_ != 0)
         return;
     coupling_ << std::setprecision(8) << l.level << ',' << l.time << ',' << l.iteration << ','
               << l.relaxation << ',' << l.measure.rmsResidual << ',' << l.measure.relativeResidual
-              << ',' << l.fluidIterations << ',' << l.fluidResidual << ',' << (l.fluidConverged ? 1 : 0)
-              << ',' << l.fluidTolerance << ',' << l.newtonIterations << ',' << l.wallFluid << ','
-              << l.wallSolid << ',' << l.wallMapping << ',' << l.note << '\n';
+              << ',' << l.fluidIterations << ',' << l.fluidResidual << ','
+              << (l.fluidConverged ? 1 : 0) << ',' << l.fluidTolerance << ',' << l.newtonIterations
+              << ',' << l.wallFluid << ',' << l.wallSolid << ',' << l.wallMapping << ','
+              << csvField(l.note) << '\n';
     coupling_.flush();
     if (!verbose_)
         return;

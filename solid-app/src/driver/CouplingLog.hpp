@@ -38,6 +38,10 @@ struct IterationLine
     std::string note;
 };
 
+// A CSV field (RFC 4180): as is, or in double quotes (quotes doubled) when it holds a comma, a
+// quote or a line break. The notes of coupling.csv are free text.
+std::string csvField(const std::string& text);
+
 // Remaining wall time of a run: the levels still needed to reach the end time if the step keeps
 // growing as it did over the last `window` levels (at most to maxStep), times the recent wall
 // time per level. With a constant step this is the simulated time to go times the recent cost
