@@ -51,7 +51,7 @@ solve() {  # model level te maxIterations
 }
 
 raw=$FSI_VERIFY_DIR/levels.csv
-echo "te,h_m,level,cells,flow,scheme,iterations,converged,C_L,C_D,C_M,yplus_max,yplus_mean,cpu_s,wall_s,cl_min,cl_max,load1" > "$raw"
+echo "te,h_m,level,cells,flow,scheme,iterations,converged,C_L,C_D,C_M,yplus_max,yplus_mean,cpu_s,wall_s,cl_min,cl_max,turb_from_suction,sep_suction,turb_from_pressure,sep_pressure,load1" > "$raw"
 for model in $models; do
     for level in $levels; do
         solve "$model" "$level" "$te" 8000 >> "$raw"
