@@ -21,8 +21,15 @@
 #   H2D_TOLERANCE  estimated force error at which a solve stops (run2d.sh --tolerance; default
 #                  1e-5, held for 100 iterations: well below the level-to-level differences)
 #   H2D_EVIDENCE   1 (default): also the steadiness runs (laminar, transition, blunt turbulent)
+#   H2D_MAX_ITERATIONS  SIMPLE iteration cap per level (default 8000)
+#   H2D_SEQUENCE   1 (default): every level of the mesh study starts from the solution of the
+#                  next coarser level (run2d.sh --init-from; grid sequencing, fewer iterations)
+#   H2D_INLET      "TU L": inlet turbulence intensity and length scale (m) for every solve
+#                  (run2d.sh --tu --length-scale; default: those of cases/hydrofoil/fluid/0.orig)
 #   H2D_RUNS       run folders (default $FSI_VERIFY_DIR/runs, not tracked)
 #   H2D_REUSE=1    keep finished runs (RUN/section2d.csv) instead of redoing them
+# gci.csv has one row per quantity for every three consecutive levels (coarse to fine), so
+# that the approach to the asymptotic range shows; the finest three give the result.
 set -euo pipefail
 : "${FSI_VERIFY_DIR:?run through scripts/verify hydrofoil-2d}"
 root=${FSI_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}
@@ -35,15 +42,23 @@ runs=${H2D_RUNS:-$FSI_VERIFY_DIR/runs}
 reuse=${H2D_REUSE:-0}
 mkdir -p "$runs"
 
+inlet=()
+if [ -n "${H2D_INLET:-}" ]; then
+    set -- $H2D_INLET
+    [ $# = 2 ] || { echo "error: hydrofoil-2d: H2D_INLET='$H2D_INLET' must be \"TU L\" (e.g. \"0.01 0.001\")" >&2; exit 2; }
+    inlet=(--tu "$1" --length-scale "$2")
+fi
+
 # one solve: run2d.sh into RUN unless reusable; echo its CSV row prefixed by te and h
-solve() {  # model level te maxIterations
-    local r=$runs/$1-$3-L$2
+solve() {  # model level te maxIterations [initFromRun]
+    local r=$runs/$1-$3-L$2 init=()
+    [ -z "${5:-}" ] || init=(--init-from "$5")
     if [ "$reuse" = 1 ] && [ -f "$r/section2d.csv" ]; then
         echo "hydrofoil-2d: reusing $r" >&2
     else
         echo "hydrofoil-2d: $1 level $2 te $3 ($(date +%H:%M:%S), load $(cut -d' ' -f1 /proc/loadavg))" >&2
         "$run2d" --out "$r" --level "$2" --flow "$1" --te "$3" --max-iterations "$4" \
-            --tolerance "${H2D_TOLERANCE:-1e-5}" > "$r.log" 2>&1 ||
+            --tolerance "${H2D_TOLERANCE:-1e-5}" "${inlet[@]}" "${init[@]}" > "$r.log" 2>&1 ||
             { tail -5 "$r.log" >&2; echo "error: hydrofoil-2d: $1 level $2 failed (see $r.log)" >&2; exit 1; }
     fi
     local h; h=$(sed -n 's/.* h_m=\([^ ]*\).*/\1/p' "$r/mesh/section2d-mesh.txt")
@@ -53,9 +68,11 @@ solve() {  # model level te maxIterations
 raw=$FSI_VERIFY_DIR/levels.csv
 echo "te,h_m,level,cells,flow,scheme,iterations,converged,C_L,C_D,C_M,yplus_max,yplus_mean,cpu_s,wall_s,cl_min,cl_max,turb_from_suction,sep_suction,turb_from_pressure,sep_pressure,load1" > "$raw"
 for model in $models; do
+    previous=""
     for level in $levels; do
-        solve "$model" "$level" "$te" 8000 >> "$raw"
+        solve "$model" "$level" "$te" "${H2D_MAX_ITERATIONS:-8000}" "$previous" >> "$raw"
         tail -n 1 "$raw"
+        [ "${H2D_SEQUENCE:-1}" != 1 ] || previous=$runs/$model-$te-L$level
     done
 done
 if [ "${H2D_EVIDENCE:-1}" = 1 ]; then
@@ -84,13 +101,16 @@ for model in sorted({r["flow"] for r in rows}):
                 return True
             lo, hi = float(r["cl_min"]), float(r["cl_max"])
             return math.isfinite(lo) and abs(hi - lo) < 1e-4 * abs(float(r["C_L"]))
-        if len(rs) >= 3 and all(settled(r) for r in rs[-3:]):
-            res = gci([float(r["h_m"]) for r in rs[-3:]], [float(r[q]) for r in rs[-3:]])
-            gciRows.append([q, model, " ".join(r["level"] for r in rs[-3:]),
+        for i in range(len(rs) - 2):
+            tri = rs[i:i + 3]
+            if not all(settled(r) for r in tri):
+                continue
+            res = gci([float(r["h_m"]) for r in tri], [float(r[q]) for r in tri])
+            gciRows.append([q, model, " ".join(r["level"] for r in tri),
                             "%.4g" % res["observed_order"], "%.8g" % res["extrapolated"],
                             "%.4g" % res["gci_fine_pct"], res["convergence"],
                             "%.4g" % res["asymptotic_ratio"], "%.4g" % res["rel_diff_fine"]])
-            if res["convergence"] == "monotone":
+            if i == len(rs) - 3 and res["convergence"] == "monotone":
                 ref = res["extrapolated"]
         if ref is None:
             ref = float(rs[-1][q])

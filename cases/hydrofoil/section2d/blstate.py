@@ -40,7 +40,9 @@ def latestTime(case):
 
 def internalField(path):
     """ASCII OpenFOAM field: the internalField list as an array (scalars or vectors)."""
-    s = open(path).read()
+    s = open(path, errors="replace").read()
+    if re.search(r"\bformat\s+binary\s*;", s[:2000]):
+        sys.exit("blstate.py: %s is binary; run2d.sh sets writeFormat ascii (controlDict) for it" % path)
     m = re.search(r"internalField\s+nonuniform\s+List<(scalar|vector)>\s*(\d+)\s*\(", s)
     if not m:
         sys.exit("blstate.py: %s: no ASCII nonuniform internalField (writeFormat ascii needed)" % path)
