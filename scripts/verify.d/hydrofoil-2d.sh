@@ -6,8 +6,9 @@
 # Per flow model: observed order, Richardson extrapolation and GCI_fine (Celik et al. 2008 /
 # ASME V&V 20) from the three finest levels -> gci.csv (quantity,model,levels,observed_order,
 # extrapolated,gci_fine_pct, then convergence,asymptotic_ratio,rel_diff_fine,asymptotic_range:
-# yes when the convergence is monotone with an observed order between 1 and 3; otherwise the
-# order and GCI are no error bound).
+# yes when the three levels are settled (below) and converge monotonically with an observed
+# order between 1 and 3, otherwise the order and GCI are no error bound; settled: yes when
+# all three levels are).
 # error_vs_runtime.csv: the standard columns; reference = the extrapolated value where the
 # three finest levels are in the asymptotic range, else the finest level (its rows then have
 # rel_error 0); extra columns cpu_s, iterations, converged, model, te.
@@ -105,15 +106,15 @@ for model in sorted({r["flow"] for r in rows}):
             return math.isfinite(lo) and abs(hi - lo) < 1e-4 * abs(float(r["C_L"]))
         for i in range(len(rs) - 2):
             tri = rs[i:i + 3]
-            if not all(settled(r) for r in tri):
-                continue
+            allSettled = all(settled(r) for r in tri)
             res = gci([float(r["h_m"]) for r in tri], [float(r[q]) for r in tri])
-            asymptotic = res["convergence"] == "monotone" and 1.0 <= res["observed_order"] <= 3.0
+            asymptotic = (allSettled and res["convergence"] == "monotone"
+                          and 1.0 <= res["observed_order"] <= 3.0)
             gciRows.append([q, model, " ".join(r["level"] for r in tri),
                             "%.4g" % res["observed_order"], "%.8g" % res["extrapolated"],
                             "%.4g" % res["gci_fine_pct"], res["convergence"],
                             "%.4g" % res["asymptotic_ratio"], "%.4g" % res["rel_diff_fine"],
-                            "yes" if asymptotic else "no"])
+                            "yes" if asymptotic else "no", "yes" if allSettled else "no"])
             if i == len(rs) - 3 and asymptotic:
                 ref = res["extrapolated"]
         if ref is None:
@@ -125,7 +126,7 @@ for model in sorted({r["flow"] for r in rows}):
                         r["converged"], model, r["te"]])
 with open(os.path.join(outDir, "gci.csv"), "w") as f:
     f.write("quantity,model,levels,observed_order,extrapolated,gci_fine_pct,convergence,"
-            "asymptotic_ratio,rel_diff_fine,asymptotic_range\n")
+            "asymptotic_ratio,rel_diff_fine,asymptotic_range,settled\n")
     for g in gciRows:
         f.write(",".join(g) + "\n")
 with open(os.path.join(outDir, "error_vs_runtime.csv"), "w") as f:
@@ -135,6 +136,6 @@ with open(os.path.join(outDir, "error_vs_runtime.csv"), "w") as f:
         f.write(",".join(str(v) for v in e) + "\n")
 for g in gciRows:
     print("hydrofoil-2d: %s %s levels %s: order %s, extrapolated %s, GCI_fine %s %% (%s, "
-          "asymptotic ratio %s, in the asymptotic range (order 1-3): %s)"
+          "asymptotic ratio %s, in the asymptotic range (order 1-3): %s, levels settled: %s)"
           % tuple(g[:8] + g[9:]))
 PY
