@@ -57,6 +57,13 @@ done
 [[ "$level" =~ ^[0-6]$ ]] || die "--level '$level' must be 0..6"
 case "$flow" in laminar|transition|turbulent) ;; *) die "--flow '$flow' unknown; use laminar, transition or turbulent" ;; esac
 case "$scheme" in upwind|linearUpwind) ;; *) die "--scheme '$scheme' unknown; use upwind or linearUpwind" ;; esac
+if [ -n "$tu$lscale" ]; then
+    [ -n "$tu" ] && [ -n "$lscale" ] || die "--tu and --length-scale go together"
+    [[ "$tu" =~ ^(0?\.[0-9]+|[0-9]\.?[0-9]*[eE]-[0-9]+)$ ]] && [[ "$lscale" =~ ^(0?\.[0-9]+|[0-9]\.?[0-9]*[eE]-[0-9]+)$ ]] \
+        || die "--tu '$tu' and --length-scale '$lscale' must be numbers in (0, 1) (e.g. --tu 0.01 --length-scale 0.001)"
+fi
+[ -z "$initFrom" ] || { [ -f "$initFrom/section2d.csv" ] && [ -d "$initFrom/case" ]; } \
+    || die "--init-from '$initFrom' is not a finished run2d.sh run (no section2d.csv / case)"
 [ "$meshOnly" = 1 ] || command -v fluid-app > /dev/null || die "fluid-app not on PATH (run through scripts/run or scripts/verify, or add build/bin)"
 export WM_PROJECT_DIR="${WM_PROJECT_DIR:-/usr/share/openfoam}" FOAM_SIGFPE="${FOAM_SIGFPE:-false}"
 py=${FSI_PYTHON:-/usr/bin/python3}
