@@ -98,7 +98,7 @@ def main(case, outCsv):
         sel = [i for i in order if names[i] == s]
         onset = float("nan")
         for j, i in enumerate(sel):
-            if all(ratio[k] > 1.0 for k in sel[j:] if xc[k] < 0.98):
+            if ratio[i] > 1.0 and all(ratio[k] > 1.0 for k in sel[j:] if xc[k] < 0.98):
                 onset = xc[i]
                 break
         mid = [i for i in sel if 0.2 <= xc[i] <= 0.8]

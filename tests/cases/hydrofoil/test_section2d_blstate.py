@@ -25,7 +25,7 @@ def writeField(path, kind, values):
         f.write(")\n;\n\nboundaryField\n{\n}\n")
 
 
-def makeCase(root):
+def makeCase(root, laminar=False):
     case = os.path.join(root, "case")
     os.makedirs(os.path.join(case, "0"))
     os.makedirs(os.path.join(case, "500"))
@@ -40,7 +40,7 @@ def makeCase(root):
             for d in (2e-4, 6e-4):
                 cells.append((X_LE + xc * CHORD, y0 + sgn * d, 0.0))
                 suction = side == "lower"
-                nut.append(NU * ((0.5 if xc < 0.3 else 5.0) if suction else 2.0))
+                nut.append(0.0 if laminar else NU * ((0.5 if xc < 0.3 else 5.0) if suction else 2.0))
     with open(os.path.join(surf, "wallShearStress_foil.raw"), "w") as fw, \
             open(os.path.join(surf, "p_foil.raw"), "w") as fp:
         fw.write("#  x  y  z  wallShearStress_x  wallShearStress_y  wallShearStress_z\n")
@@ -75,6 +75,17 @@ class BlStateTest(unittest.TestCase):
                   for r in rows[1:]}
             self.assertAlmostEqual(cf[("suction", 0.505)], 0.004 / 2.0, delta=1e-12)  # tau/(U^2/2)
             self.assertAlmostEqual(cf[("suction", 0.905)], -0.002 / 2.0, delta=1e-12)
+
+    def test_laminar_layer_has_no_onset(self):
+        # nu_t = 0 everywhere (the laminar model): no x/c from which the layer is turbulent
+        with tempfile.TemporaryDirectory() as root:
+            case = makeCase(root, laminar=True)
+            res = subprocess.run([sys.executable, BLSTATE, case, os.path.join(root, "bl.csv")],
+                                 capture_output=True, text=True, check=True)
+            last = [l for l in res.stdout.splitlines() if l.startswith("blstate-onsets:")][0]
+            turbS, _, turbP, _ = (float(v) for v in last.split()[1:])
+            self.assertNotEqual(turbS, turbS)
+            self.assertNotEqual(turbP, turbP)
 
     def test_binary_fields_are_refused(self):
         with tempfile.TemporaryDirectory() as root:
