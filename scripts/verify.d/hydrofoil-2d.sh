@@ -5,9 +5,12 @@
 # fluid-app -rigid, second-order bounded convection (linearUpwind, cell-limited gradients).
 # Per flow model: observed order, Richardson extrapolation and GCI_fine (Celik et al. 2008 /
 # ASME V&V 20) from the three finest levels -> gci.csv (quantity,model,levels,observed_order,
-# extrapolated,gci_fine_pct, then convergence,asymptotic_ratio,rel_diff_fine).
+# extrapolated,gci_fine_pct, then convergence,asymptotic_ratio,rel_diff_fine,asymptotic_range:
+# yes when the three levels are settled (below) and converge monotonically with an observed
+# order between 1 and 3, otherwise the order and GCI are no error bound; settled: yes when
+# all three levels are).
 # error_vs_runtime.csv: the standard columns; reference = the extrapolated value where the
-# three finest levels converge monotonically, else the finest level (its rows then have
+# three finest levels are in the asymptotic range, else the finest level (its rows then have
 # rel_error 0); extra columns cpu_s, iterations, converged, model, te.
 # Steadiness evidence (steadiness.csv): level-0/1 solves of the models and trailing edges that
 # have no steady state (1500 iterations); their C_L range over 300 further SIMPLE iterations.
@@ -21,8 +24,15 @@
 #   H2D_TOLERANCE  estimated force error at which a solve stops (run2d.sh --tolerance; default
 #                  1e-5, held for 100 iterations: well below the level-to-level differences)
 #   H2D_EVIDENCE   1 (default): also the steadiness runs (laminar, transition, blunt turbulent)
+#   H2D_MAX_ITERATIONS  SIMPLE iteration cap per level (default 8000)
+#   H2D_SEQUENCE   1 (default): every level of the mesh study starts from the solution of the
+#                  next coarser level (run2d.sh --init-from; grid sequencing, fewer iterations)
+#   H2D_INLET      "TU L": inlet turbulence intensity and length scale (m) for every solve
+#                  (run2d.sh --tu --length-scale; default: those of cases/hydrofoil/fluid/0.orig)
 #   H2D_RUNS       run folders (default $FSI_VERIFY_DIR/runs, not tracked)
 #   H2D_REUSE=1    keep finished runs (RUN/section2d.csv) instead of redoing them
+# gci.csv has one row per quantity for every three consecutive levels (coarse to fine), so
+# that the approach to the asymptotic range shows; the finest three give the result.
 set -euo pipefail
 : "${FSI_VERIFY_DIR:?run through scripts/verify hydrofoil-2d}"
 root=${FSI_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}
@@ -35,15 +45,23 @@ runs=${H2D_RUNS:-$FSI_VERIFY_DIR/runs}
 reuse=${H2D_REUSE:-0}
 mkdir -p "$runs"
 
+inlet=()
+if [ -n "${H2D_INLET:-}" ]; then
+    set -- $H2D_INLET
+    [ $# = 2 ] || { echo "error: hydrofoil-2d: H2D_INLET='$H2D_INLET' must be \"TU L\" (e.g. \"0.01 0.001\")" >&2; exit 2; }
+    inlet=(--tu "$1" --length-scale "$2")
+fi
+
 # one solve: run2d.sh into RUN unless reusable; echo its CSV row prefixed by te and h
-solve() {  # model level te maxIterations
-    local r=$runs/$1-$3-L$2
+solve() {  # model level te maxIterations [initFromRun]
+    local r=$runs/$1-$3-L$2 init=()
+    [ -z "${5:-}" ] || init=(--init-from "$5")
     if [ "$reuse" = 1 ] && [ -f "$r/section2d.csv" ]; then
         echo "hydrofoil-2d: reusing $r" >&2
     else
         echo "hydrofoil-2d: $1 level $2 te $3 ($(date +%H:%M:%S), load $(cut -d' ' -f1 /proc/loadavg))" >&2
         "$run2d" --out "$r" --level "$2" --flow "$1" --te "$3" --max-iterations "$4" \
-            --tolerance "${H2D_TOLERANCE:-1e-5}" > "$r.log" 2>&1 ||
+            --tolerance "${H2D_TOLERANCE:-1e-5}" "${inlet[@]}" "${init[@]}" > "$r.log" 2>&1 ||
             { tail -5 "$r.log" >&2; echo "error: hydrofoil-2d: $1 level $2 failed (see $r.log)" >&2; exit 1; }
     fi
     local h; h=$(sed -n 's/.* h_m=\([^ ]*\).*/\1/p' "$r/mesh/section2d-mesh.txt")
@@ -51,11 +69,13 @@ solve() {  # model level te maxIterations
 }
 
 raw=$FSI_VERIFY_DIR/levels.csv
-echo "te,h_m,level,cells,flow,scheme,iterations,converged,C_L,C_D,C_M,yplus_max,yplus_mean,cpu_s,wall_s,cl_min,cl_max,load1" > "$raw"
+echo "te,h_m,level,cells,flow,scheme,iterations,converged,C_L,C_D,C_M,yplus_max,yplus_mean,cpu_s,wall_s,cl_min,cl_max,turb_from_suction,sep_suction,turb_from_pressure,sep_pressure,load1" > "$raw"
 for model in $models; do
+    previous=""
     for level in $levels; do
-        solve "$model" "$level" "$te" 8000 >> "$raw"
+        solve "$model" "$level" "$te" "${H2D_MAX_ITERATIONS:-8000}" "$previous" >> "$raw"
         tail -n 1 "$raw"
+        [ "${H2D_SEQUENCE:-1}" != 1 ] || previous=$runs/$model-$te-L$level
     done
 done
 if [ "${H2D_EVIDENCE:-1}" = 1 ]; then
@@ -84,13 +104,18 @@ for model in sorted({r["flow"] for r in rows}):
                 return True
             lo, hi = float(r["cl_min"]), float(r["cl_max"])
             return math.isfinite(lo) and abs(hi - lo) < 1e-4 * abs(float(r["C_L"]))
-        if len(rs) >= 3 and all(settled(r) for r in rs[-3:]):
-            res = gci([float(r["h_m"]) for r in rs[-3:]], [float(r[q]) for r in rs[-3:]])
-            gciRows.append([q, model, " ".join(r["level"] for r in rs[-3:]),
+        for i in range(len(rs) - 2):
+            tri = rs[i:i + 3]
+            allSettled = all(settled(r) for r in tri)
+            res = gci([float(r["h_m"]) for r in tri], [float(r[q]) for r in tri])
+            asymptotic = (allSettled and res["convergence"] == "monotone"
+                          and 1.0 <= res["observed_order"] <= 3.0)
+            gciRows.append([q, model, " ".join(r["level"] for r in tri),
                             "%.4g" % res["observed_order"], "%.8g" % res["extrapolated"],
                             "%.4g" % res["gci_fine_pct"], res["convergence"],
-                            "%.4g" % res["asymptotic_ratio"], "%.4g" % res["rel_diff_fine"]])
-            if res["convergence"] == "monotone":
+                            "%.4g" % res["asymptotic_ratio"], "%.4g" % res["rel_diff_fine"],
+                            "yes" if asymptotic else "no", "yes" if allSettled else "no"])
+            if i == len(rs) - 3 and asymptotic:
                 ref = res["extrapolated"]
         if ref is None:
             ref = float(rs[-1][q])
@@ -101,7 +126,7 @@ for model in sorted({r["flow"] for r in rows}):
                         r["converged"], model, r["te"]])
 with open(os.path.join(outDir, "gci.csv"), "w") as f:
     f.write("quantity,model,levels,observed_order,extrapolated,gci_fine_pct,convergence,"
-            "asymptotic_ratio,rel_diff_fine\n")
+            "asymptotic_ratio,rel_diff_fine,asymptotic_range,settled\n")
     for g in gciRows:
         f.write(",".join(g) + "\n")
 with open(os.path.join(outDir, "error_vs_runtime.csv"), "w") as f:
@@ -111,5 +136,6 @@ with open(os.path.join(outDir, "error_vs_runtime.csv"), "w") as f:
         f.write(",".join(str(v) for v in e) + "\n")
 for g in gciRows:
     print("hydrofoil-2d: %s %s levels %s: order %s, extrapolated %s, GCI_fine %s %% (%s, "
-          "asymptotic ratio %s)" % tuple(g[:8]))
+          "asymptotic ratio %s, in the asymptotic range (order 1-3): %s, levels settled: %s)"
+          % tuple(g[:8] + g[9:]))
 PY

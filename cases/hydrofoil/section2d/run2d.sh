@@ -6,21 +6,33 @@
 #
 #   cases/hydrofoil/section2d/run2d.sh --out DIR [--level K] [--flow laminar|transition|turbulent]
 #       [--scheme upwind|linearUpwind] [--tolerance 1e-6] [--max-iterations 6000] [--mesh-only]
-#       [--tc 0.12] [--cli 0.5]
+#       [--tc 0.12] [--cli 0.5] [--tu 0.01] [--length-scale 0.001] [--init-from RUN]
 #
 #   --level K         mesh level (0 coarsest; every level refines all lengths by sqrt 2)
 #   --tolerance T     stop when the estimated force error left is below T |F| for 100
 #                     consecutive iterations (fsiDict rigid.estimateForceError,
 #                     stableIterations; residuals are not required)
 #   --max-iterations  SIMPLE iteration cap (the run is reported as not converged if reached)
+#   --tu, --length-scale  inlet turbulence intensity and length scale (m) of the RAS models:
+#                     k = 1.5 (Tu U)^2, omega = sqrt(k) / (Cmu^0.25 l) at the inlet and as the
+#                     initial field (default: the values of fluid/0.orig/k and omega)
+#   --init-from RUN   start from the solution of another run2d.sh run (RUN/case, e.g. the next
+#                     coarser level, same flow model), mapped with mapFields (nearest cell):
+#                     grid sequencing, fewer iterations; the stopping test is unchanged
 # Writes DIR/mesh (the C-grid as MSH 2.2 and its parameters), DIR/case (OpenFOAM case, fields for ParaView in the last
 # time folder, postProcessing/forcesFinal and yPlus) and DIR/section2d.csv (one row: level,
 # cells, flow, scheme, iterations, converged, C_L, C_D, C_M, y+ max / mean on the foil, CPU and
 # wall seconds of the solve, and for a solve that did not converge the C_L range over
-# SIMPLE_WINDOW (default 300) further iterations of simpleFoam: cl_min, cl_max). fluid-app must be on PATH (scripts/run and scripts/verify put build/bin there).
+# SIMPLE_WINDOW (default 300) further iterations of simpleFoam: cl_min, cl_max; then the x/c
+# from which the suction and the pressure side boundary layers are turbulent,
+# turb_from_suction, turb_from_pressure, and the x/c from which the flow at the wall is
+# reversed (separated), sep_suction, sep_pressure: blstate.py, whose per-face skin friction
+# and nu_t/nu are in DIR/boundary-layer.csv). fluid-app must be on PATH (scripts/run and scripts/verify put
+# build/bin there).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 out="" level=0 flow=laminar scheme=linearUpwind tol=1e-6 maxIt=6000 meshOnly=0 tc=0.12 cli=0.5 te=blunt
+tu="" lscale="" initFrom=""
 die() { echo "error: section2d/run2d.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
     case "$1" in
@@ -34,7 +46,10 @@ while [ $# -gt 0 ]; do
         --tc) tc="$2"; shift 2 ;;
         --cli) cli="$2"; shift 2 ;;
         --te) te="$2"; shift 2 ;;
-        -h|--help) sed -n '3,18p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        --tu) tu="$2"; shift 2 ;;
+        --length-scale) lscale="$2"; shift 2 ;;
+        --init-from) initFrom="$2"; shift 2 ;;
+        -h|--help) sed -n '3,31p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) die "unknown option '$1' (see --help)" ;;
     esac
 done
@@ -42,6 +57,13 @@ done
 [[ "$level" =~ ^[0-6]$ ]] || die "--level '$level' must be 0..6"
 case "$flow" in laminar|transition|turbulent) ;; *) die "--flow '$flow' unknown; use laminar, transition or turbulent" ;; esac
 case "$scheme" in upwind|linearUpwind) ;; *) die "--scheme '$scheme' unknown; use upwind or linearUpwind" ;; esac
+if [ -n "$tu$lscale" ]; then
+    [ -n "$tu" ] && [ -n "$lscale" ] || die "--tu and --length-scale go together"
+    [[ "$tu" =~ ^(0?\.[0-9]+|[0-9]\.?[0-9]*[eE]-[0-9]+)$ ]] && [[ "$lscale" =~ ^(0?\.[0-9]+|[0-9]\.?[0-9]*[eE]-[0-9]+)$ ]] \
+        || die "--tu '$tu' and --length-scale '$lscale' must be numbers in (0, 1) (e.g. --tu 0.01 --length-scale 0.001)"
+fi
+[ -z "$initFrom" ] || { [ -f "$initFrom/section2d.csv" ] && [ -d "$initFrom/case" ]; } \
+    || die "--init-from '$initFrom' is not a finished run2d.sh run (no section2d.csv / case)"
 [ "$meshOnly" = 1 ] || command -v fluid-app > /dev/null || die "fluid-app not on PATH (run through scripts/run or scripts/verify, or add build/bin)"
 export WM_PROJECT_DIR="${WM_PROJECT_DIR:-/usr/share/openfoam}" FOAM_SIGFPE="${FOAM_SIGFPE:-false}"
 py=${FSI_PYTHON:-/usr/bin/python3}
@@ -92,6 +114,38 @@ cp -r "$here/../fluid/0.orig" "$case/0"
 rm -f "$case/0/pointDisplacement"
 "$here/../tools/setFlow.sh" "$case" --flow "$flow" --scheme "$scheme" > /dev/null
 fd() { foamDictionary "$case/$1" -entry "$2" -set "$3" > /dev/null; }
+if [ -n "$tu$lscale" ]; then
+    [ -n "$tu" ] && [ -n "$lscale" ] || die "--tu and --length-scale go together"
+    read -r kIn omegaIn < <("$py" -c "import math, sys
+tu, l = float(sys.argv[1]), float(sys.argv[2])
+assert 0 < tu < 1 and 0 < l < 1
+k = 1.5 * (tu * 2.0) ** 2
+print('%.6g %.6g' % (k, math.sqrt(k) / (0.09 ** 0.25 * l)))" "$tu" "$lscale" 2> /dev/null) \
+        || die "--tu '$tu' must be in (0, 1) and --length-scale '$lscale' in (0, 1) m"
+    for f in k:$kIn omega:$omegaIn; do
+        fd "0/${f%%:*}" internalField "uniform ${f#*:}"
+        fd "0/${f%%:*}" boundaryField/inlet/value "uniform ${f#*:}"
+    done
+    log "inlet turbulence: Tu $tu, length scale $lscale m: k $kIn m^2/s^2, omega $omegaIn 1/s"
+fi
+if [ -n "$initFrom" ]; then
+    [ -f "$initFrom/section2d.csv" ] && [ -d "$initFrom/case" ] \
+        || die "--init-from '$initFrom' is not a finished run2d.sh run (no section2d.csv / case)"
+    # a source case with the solved fields only (mapFields fails on the cell-centre fields);
+    # nearest-cell mapping (v1912's default direct method crashes on these meshes)
+    src="$out/mapSource" srcCase="$(cd "$initFrom/case" && pwd)"
+    srcTime=$(foamListTimes -case "$srcCase" -latestTime 2>/dev/null | tail -1)
+    [ -n "$srcTime" ] || die "--init-from '$initFrom': no solved time folder in its case"
+    rm -rf "$src"; mkdir -p "$src/$srcTime"
+    cp -r "$srcCase/system" "$srcCase/constant" "$src/"
+    for f in U p k omega nut ReThetat gammaInt; do
+        [ ! -f "$srcCase/$srcTime/$f" ] || cp "$srcCase/$srcTime/$f" "$src/$srcTime/"
+    done
+    ( cd "$case" && mapFields "$src" -consistent -sourceTime latestTime -mapMethod mapNearest > log.mapFields 2>&1 ) \
+        || { tail -20 "$case/log.mapFields"; die "mapFields from $initFrom failed (see $case/log.mapFields)"; }
+    rm -rf "$src"
+    log "initial fields mapped from $initFrom"
+fi
 fd system/fsiDict rigid/maxIterations "$maxIt"
 fd system/fsiDict rigid/forceTolerance "$tol"
 fd system/fsiDict rigid/residualRequired false
@@ -105,6 +159,17 @@ fd system/controlDict functions/forces/CofR "(0.3685 0 0)"
 # function objects: simpleFoam -postProcess evaluates forces and yPlus on the written fields)
 fd system/controlDict functions/yPlus \
     '{ type yPlus; libs ("libfieldFunctionObjects.so"); writeControl writeTime; patches (foil); }'
+# boundary-layer state (blstate.py): wall shear stress and pressure on the foil, cell centres;
+# ASCII fields (small 2-D meshes) so that blstate.py reads nut and C
+fd system/controlDict writeFormat ascii
+fd system/controlDict functions/wallShearStress \
+    '{ type wallShearStress; libs ("libfieldFunctionObjects.so"); writeControl writeTime; patches (foil); }'
+fd system/controlDict functions/cellCentres \
+    '{ type writeCellCentres; libs ("libfieldFunctionObjects.so"); writeControl writeTime; }'
+fd system/controlDict functions/foilSurface \
+    '{ type surfaces; libs ("libsampling.so"); writeControl writeTime; surfaceFormat raw;
+       interpolationScheme cell; fields (wallShearStress p);
+       surfaces ( foil { type patch; patches (foil); interpolate false; } ); }'
 
 # ---- solve --------------------------------------------------------------------------------
 log "fluid-app -rigid: flow $flow, scheme $scheme, estimated force error <= $tol |F|, cap $maxIt"
@@ -116,6 +181,9 @@ t1=$(date +%s.%N)
     || { tail -20 "$case/log.postProcess"; die "simpleFoam -postProcess failed (see $case/log.postProcess)"; }
 rm -rf "$case/postProcessing/forcesFinal"
 mv "$case/postProcessing/forces" "$case/postProcessing/forcesFinal"
+onsets=$("$py" "$here/blstate.py" "$case" "$out/boundary-layer.csv" | tee "$case/log.blstate" \
+    | sed -n 's/^blstate-onsets: //p') || die "blstate.py failed (see $case/log.blstate)"
+[ -n "$onsets" ] || die "blstate.py printed no onsets (see $case/log.blstate)"
 # not converged: SIMPLE_WINDOW more iterations with Debian's simpleFoam and the forces function
 # object, to show how far the forces still move (C_L range, columns cl_min / cl_max)
 window=${SIMPLE_WINDOW:-300}
@@ -126,9 +194,9 @@ if ! awk -F, 'NR == 2 && $11 == 1 {ok = 1} END {exit !ok}' "$case/postProcessing
     foamDictionary "$case/system/controlDict" -entry writeInterval -set $((last + window)) > /dev/null
     ( cd "$case" && simpleFoam > log.simpleFoam.window 2>&1 ) || log "simpleFoam window failed (see log.simpleFoam.window)"
 fi
-"$py" - "$case" "$level" "$cells" "$flow" "$scheme" "$t0" "$t1" "$out/section2d.csv" <<'EOP'
+"$py" - "$case" "$level" "$cells" "$flow" "$scheme" "$t0" "$t1" "$out/section2d.csv" $onsets <<'EOP'
 import csv, glob, math, os, re, sys
-case, level, cells, flow, scheme, t0, t1, outCsv = sys.argv[1:]
+case, level, cells, flow, scheme, t0, t1, outCsv, onSuction, sepSuction, onPressure, sepPressure = sys.argv[1:]
 row = next(csv.DictReader(open(os.path.join(case, "postProcessing/fsi/forces.csv"))))
 rho, U, c, dz = 998.2, 2.0, 0.05, 0.001
 q = 0.5 * rho * U * U
@@ -165,7 +233,9 @@ r = dict(level=level, cells=cells, flow=flow, scheme=scheme,
          iterations=row["simpleIterations"], converged=row["converged"],
          C_L=-fy / (q * c * dz), C_D=fx / (q * c * dz), C_M=mz / (q * c * c * dz),
          yplus_max=ypMax, yplus_mean=ypMean, cpu_s=cpu, wall_s=float(t1) - float(t0),
-         cl_min=clMin, cl_max=clMax)
+         cl_min=clMin, cl_max=clMax, turb_from_suction=float(onSuction),
+         sep_suction=float(sepSuction), turb_from_pressure=float(onPressure),
+         sep_pressure=float(sepPressure))
 with open(outCsv, "w") as f:
     f.write(",".join(r) + "\n")
     f.write(",".join(("%.8g" % v) if isinstance(v, float) else str(v) for v in r.values()) + "\n")
