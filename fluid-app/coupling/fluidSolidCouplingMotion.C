@@ -79,6 +79,15 @@ void Foam::fluidSolidCoupling::moveInterface
 
     // Steady: fluxes from U on the moved mesh, no mesh-flux terms
     phi_ = fvc::flux(U_);
+
+    // The mesh now stands still until the next interface motion. Refresh the one piece of
+    // geometry that is only updated while the mesh is flagged moving (the turbulence model's
+    // near-wall distances, used by wall functions), then clear the flag: left set, every SIMPLE
+    // iteration of the steady solve recomputes those distances (turbulenceModel::correct):
+    // about a sixth of the fluid's CPU time in the coupled hydrofoil, for results that are
+    // identical to the last bit.
+    const_cast<nearWallDist&>(turbulence_.y()).correct();
+    mesh_.moving(false);
 }
 
 

@@ -242,6 +242,33 @@ def t_quality_guard(a):
     check(not os.path.isdir(os.path.join(d, "1")), "no field written for the failed level")
 
 
+def t_wall_at_rest(a):
+    """After an interface motion the steady solve sees a mesh at rest: a moving-wall velocity
+    condition on the moved patch gives zero wall velocity (no-slip), not the motion increment
+    divided by the SIMPLE counter's 'time step' (1 s). Guards fluid-app's handling of the mesh's
+    moving flag (cleared after each motion, fluidSolidCouplingMotion.C) and of old points."""
+    fsi = ("coupled { maxIterations 5; residualDrop 0; forceTolerance 0; }\n"
+           "prescribed { type rotation; origin (0.2 0.2 0); axis (0 0 1); angle 2; steps 1; solveFlow true; }")
+    d = prepare(a, "wall-at-rest", single=True, extra_fsi=fsi, converged_start=True)
+    u0 = os.path.join(d, "0", "U")
+    txt, n = re.subn(r"(\n\s*body\s*\{)[^}]*\}",
+                     r"\1 type movingWallVelocity; value uniform (0 0 0); }", open(u0).read())
+    assert n == 1, "0/U has no body patch entry"
+    open(u0, "w").write(txt)
+    rc, log = run([a.fluid_app, "-prescribed", "-case", d], os.path.join(d, "log.fluid-app"))
+    check(rc == 0, "fluid-app -prescribed (2 deg rotation, 5 SIMPLE iterations) exit code 0")
+    last = max((t for t in os.listdir(d) if re.fullmatch(r"\d+", t) and t != "0"), key=int)
+    body = re.search(r"\n\s*body\s*\{(.*?)\}", open(os.path.join(d, last, "U")).read(), flags=re.S)
+    check(body is not None and "movingWallVelocity" in body.group(1),
+          "%s/U: the body patch kept its movingWallVelocity condition" % last)
+    values = [float(v) for v in re.findall(r"[-+]?\d+\.?\d*(?:[eE][-+]?\d+)?", body.group(1).split("value", 1)[1])] if body else []
+    # uniform (0 0 0) -> 3 numbers; nonuniform List<vector> N (...) -> N, then 3N numbers
+    umax = max((abs(v) for v in (values[1:] if len(values) > 3 else values)), default=float("nan"))
+    moved = max(float(x) for x in re.findall(r"max \|d\| = (\S+) m", log))
+    check(umax <= 1e-12 and moved > 1e-3,
+          "wall velocity on the moved body patch: max component %.3e m/s <= 1e-12 (motion %.3e m)" % (umax, moved))
+
+
 def t_bad_case(a):
     """Bad OpenFOAM-case input: a missing interface patch, a missing fsiDict key, a restart
     without a checkpointed level. Each stops non-zero, naming system/fsiDict (or the file) and the fix."""
@@ -441,7 +468,7 @@ def t_solid_death(a):
 
 TESTS = {"cfd1-coarse": t_cfd1_coarse, "cfd1-fine": t_cfd1_fine, "force-consistency": t_force_consistency,
          "motion-rotation": t_motion_rotation, "motion-bending": t_motion_bending,
-         "quality-guard": t_quality_guard, "bad-case": t_bad_case, "parallel-equivalence": t_parallel_equivalence,
+         "quality-guard": t_quality_guard, "wall-at-rest": t_wall_at_rest, "bad-case": t_bad_case, "parallel-equivalence": t_parallel_equivalence,
          "mpmd": t_mpmd, "port": t_port, "peer-abort": t_peer_abort,
          "failed-start": t_failed_start, "solid-death": t_solid_death}
 
