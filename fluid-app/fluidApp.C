@@ -29,9 +29,14 @@ Usage
 #include "runMode.H"
 
 #include <cmath>
+#include <cstdlib>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 int main(int argc, char* argv[])
 {
+    #include "heapSettings.H"
     // Before argList: the run mode decides whether MPI starts here (coupled: fsi::comm and the
     // MPMD world redirect, so that Pstream sees only the fluid's ranks).
     const fsi::fluid::RunMode mode = fsi::fluid::resolveRunMode(argc, argv);

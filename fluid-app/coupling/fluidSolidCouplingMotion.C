@@ -10,6 +10,29 @@
 #include "unitConversion.H"
 #include "clockTime.H"
 
+namespace
+{
+
+// Deletes the registry-owned fields of type FieldType named grad(...): the gradients that
+// fvSolution's 'cache' entry keeps between calls (e.g. grad(U), computed for the interface
+// force at the end of a SIMPLE iteration and reused by the next momentum equation).
+template<class FieldType>
+void dropCachedGradients(Foam::fvMesh& mesh)
+{
+    Foam::HashTable<FieldType*> fields(mesh.lookupClass<FieldType>());
+    forAllIters(fields, iter)
+    {
+        FieldType* field = iter.val();
+        if (field->ownedByRegistry() && field->name().compare(0, 5, "grad(") == 0)
+        {
+            delete field;   // checks itself out of the registry, as gradScheme does
+        }
+    }
+}
+
+} // End anonymous namespace
+
+
 void Foam::fluidSolidCoupling::moveInterface
 (
     const std::vector<double>& localDisplacement
@@ -88,6 +111,10 @@ void Foam::fluidSolidCoupling::moveInterface
     // identical to the last bit.
     const_cast<nearWallDist&>(turbulence_.y()).correct();
     mesh_.moving(false);
+    // Gradients cached through fvSolution's 'cache' belong to the old geometry. OpenFOAM drops
+    // them only while the mesh is flagged moving.
+    dropCachedGradients<volVectorField>(mesh_);
+    dropCachedGradients<volTensorField>(mesh_);
 }
 
 
