@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // solid-app CONFIG.yaml [--out DIR] [--restart] [--launch mpmd|port] [--port-file F]
 // [--comm-timeout S] solid-app --help
+#include "HeapSettings.hpp"
 #include "Standalone.hpp"
 #include "config/YamlReader.hpp"
 #include "driver/RunCoupled.hpp"
@@ -13,6 +14,7 @@
 
 int main(int argc, char** argv)
 {
+    fsi::app::keepLargeBlocksInHeap();
     MPI_Init(&argc, &argv);
     int rank = 0, code = 0;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
