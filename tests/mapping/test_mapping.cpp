@@ -130,6 +130,28 @@ TEST(WendlandIterative, MatchesDirectAndKeepsTheExactProperties)
     EXPECT_LT((ui - ud).norm() / ud.norm(), 1e-8);
 }
 
+TEST(WendlandWithoutMpi, AutoUsesEigenAndMumpsIsAClearError)
+{
+    // This binary does not initialise MPI: auto falls back to Eigen's LDLT (direct up to
+    // direct_max_points); solver mumps says what it needs.
+    const PointCloud s = solidCylinder(16), t = fluidCylinder(16);
+    auto p = params("rbf-wendland-c2");
+    RbfWendlandC2 automatic(*p.strategy.get<WendlandParameters>());
+    automatic.compute(s, t);
+    EXPECT_EQ(automatic.solverInUse(), "direct");
+    p.strategy.get<WendlandParameters>()->solver = "mumps";
+    try
+    {
+        buildMapping(p, s, t);
+        FAIL() << "solver mumps without MPI must throw";
+    }
+    catch (const std::runtime_error& e)
+    {
+        EXPECT_NE(std::string(e.what()).find("solver mumps needs MPI"), std::string::npos)
+            << e.what();
+    }
+}
+
 TEST(NearestNeighbourMapping, ConservesForceAndMovesMomentByTheNodeOffsets)
 {
     // Total force is conserved. The moment is conserved only where face centres and nodes

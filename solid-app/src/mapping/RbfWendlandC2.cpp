@@ -5,6 +5,9 @@
 
 #include "mapping/KdTree.hpp"
 #include "mapping/RbfSupport.hpp"
+#include "linalg/SparseDirectSolver.hpp"
+
+#include <mpi.h>
 
 #include <algorithm>
 #include <cmath>
@@ -29,7 +32,7 @@ WendlandParameters WendlandParameters::parse(const config::Block& layer)
     b.allowOnly(keys());
     WendlandParameters p;
     p.supportRadius = b.number("support_radius");
-    p.solver = b.choice("solver", {"auto", "direct", "iterative"}, p.solver);
+    p.solver = b.choice("solver", {"auto", "mumps", "direct", "iterative"}, p.solver);
     p.directMaxPoints = b.integer("direct_max_points", static_cast<int>(p.directMaxPoints));
     p.iterativeTolerance = b.number("iterative_tolerance", p.iterativeTolerance);
     return p;
@@ -42,9 +45,9 @@ void WendlandParameters::validate() const
                                  "rbf-wendland-c2 (got " +
                                  config::formatNumber(supportRadius) +
                                  "); set it to a few solid node spacings");
-    if (solver != "auto" && solver != "direct" && solver != "iterative")
+    if (solver != "auto" && solver != "mumps" && solver != "direct" && solver != "iterative")
         throw std::runtime_error("rbf-wendland-c2.solver '" + solver +
-                                 "' is unknown; use auto, direct or iterative");
+                                 "' is unknown; use auto, mumps, direct or iterative");
     if (directMaxPoints < 0)
         throw std::runtime_error("rbf-wendland-c2.direct_max_points must be >= 0 (got " +
                                  std::to_string(directMaxPoints) + "); e.g. 20000");
@@ -102,11 +105,47 @@ Eigen::Index kernelTriplets(const KdTree& tree, const PointCloud& queries, doubl
 }
 } // namespace
 
+RbfWendlandC2::RbfWendlandC2(const WendlandParameters& params) : params_(params) {}
+
+RbfWendlandC2::~RbfWendlandC2() = default;
+
+std::string RbfWendlandC2::solverInUse() const
+{
+    switch (backend_)
+    {
+    case Backend::Mumps:
+        return "mumps";
+    case Backend::Iterative:
+        return "iterative";
+    default:
+        return "direct";
+    }
+}
+
+namespace
+{
+bool mpiRunning()
+{
+    int initialised = 0, finalised = 0;
+    MPI_Initialized(&initialised);
+    MPI_Finalized(&finalised);
+    return initialised && !finalised;
+}
+} // namespace
+
 void RbfWendlandC2::compute(const PointCloud& source, const PointCloud& target)
 {
     params_.validate();
-    iterative_ = params_.solver == "iterative" ||
-                 (params_.solver == "auto" && source.rows() > params_.directMaxPoints);
+    if (params_.solver == "mumps" && !mpiRunning())
+        throw std::runtime_error("mapping rbf-wendland-c2: solver mumps needs MPI (solid-app "
+                                 "initialises it); use solver direct or iterative here");
+    if (params_.solver == "mumps" || (params_.solver == "auto" && mpiRunning()))
+        backend_ = Backend::Mumps;
+    else if (params_.solver == "iterative" ||
+             (params_.solver == "auto" && source.rows() > params_.directMaxPoints))
+        backend_ = Backend::Iterative;
+    else
+        backend_ = Backend::Direct;
     detail::checkDistinctPoints(source, "rbf-wendland-c2");
     const detail::Normalisation normalisation(source);
     const PointCloud s = normalisation.apply(source), t = normalisation.apply(target);
@@ -119,7 +158,10 @@ void RbfWendlandC2::compute(const PointCloud& source, const PointCloud& target)
     system_.resize(s.rows(), s.rows());
     system_.setFromTriplets(triplets.begin(), triplets.end());
     systemNonZeros_ = system_.nonZeros();
-    if (iterative_)
+    mumps_.reset();
+    if (backend_ == Backend::Mumps)
+        factoriseWithMumps(triplets);
+    else if (backend_ == Backend::Iterative)
     {
         cg_.setTolerance(params_.iterativeTolerance);
         cg_.setMaxIterations(std::max<Eigen::Index>(1000, s.rows()));
@@ -130,7 +172,10 @@ void RbfWendlandC2::compute(const PointCloud& source, const PointCloud& target)
         ldlt_.compute(system_);
         diagonal_ = ldlt_.vectorD(); // vectorD() returns a copy: keep it
     }
-    if ((iterative_ ? cg_.info() : ldlt_.info()) != Eigen::Success)
+    const Eigen::ComputationInfo info = backend_ == Backend::Iterative ? cg_.info()
+                                        : backend_ == Backend::Direct  ? ldlt_.info()
+                                                                       : Eigen::Success;
+    if (info != Eigen::Success)
         throw std::runtime_error("mapping rbf-wendland-c2: factorisation of the RBF matrix "
                                  "failed; check for near-duplicate source points or change "
                                  "mapping.support_radius");
@@ -158,9 +203,57 @@ void RbfWendlandC2::compute(const PointCloud& source, const PointCloud& target)
     targetSize_ = t.rows();
 }
 
+void RbfWendlandC2::factoriseWithMumps(const std::vector<Eigen::Triplet<double>>& triplets)
+{
+    // Phi is symmetric positive definite (Wendland C2 in 3-D, distinct points): LDL^T without
+    // pivoting; the lower triangle is enough.
+    linalg::DirectSolverOptions options;
+    options.symmetric = true;
+    options.positiveDefinite = true;
+    std::vector<int> rows, cols;
+    std::vector<double> values;
+    rows.reserve(triplets.size() / 2 + system_.rows());
+    cols.reserve(rows.capacity());
+    values.reserve(rows.capacity());
+    for (const auto& e : triplets)
+        if (e.row() >= e.col())
+        {
+            rows.push_back(static_cast<int>(e.row()));
+            cols.push_back(static_cast<int>(e.col()));
+            values.push_back(e.value());
+        }
+    try
+    {
+        mumps_ = std::make_unique<linalg::SparseDirectSolver>(MPI_COMM_SELF, options);
+        mumps_->setPattern(static_cast<int>(system_.rows()), std::move(rows), std::move(cols));
+        mumps_->setValues(std::move(values));
+        mumps_->factorize();
+    }
+    catch (const std::exception& e)
+    {
+        mumps_.reset();
+        throw std::runtime_error(std::string("mapping rbf-wendland-c2: MUMPS factorisation of "
+                                             "the RBF matrix failed (") +
+                                 e.what() +
+                                 "); check for near-duplicate source points or change "
+                                 "mapping.support_radius");
+    }
+}
+
 void RbfWendlandC2::solve(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& solution) const
 {
-    if (!iterative_)
+    if (backend_ == Backend::Mumps)
+    {
+        std::vector<double> column(static_cast<std::size_t>(rhs.rows()));
+        for (Eigen::Index j = 0; j < rhs.cols(); ++j)
+        {
+            Eigen::VectorXd::Map(column.data(), rhs.rows()) = rhs.col(j);
+            mumps_->solve(column);
+            solution.col(j) = Eigen::VectorXd::Map(column.data(), rhs.rows());
+        }
+        return;
+    }
+    if (backend_ == Backend::Direct)
     {
         // ldlt_.solve() spelled out: its last step permutes in place, which allocates a mask.
         resizeWorkspace(permuted_, rhs.rows(), rhs.cols());

@@ -5,15 +5,17 @@
 // Polynomial handling: separate least-squares fit, then the RBF on the residual
 // (not the saddle-point system, so the sparse matrix stays symmetric positive definite):
 //   b = Q^T f            (Q: orthonormal linear basis at the sources, least-squares fit)
-//   Phi c = f - Q b      (sparse SPD; direct: SimplicialLDLT with AMD ordering, factorised once;
-//                         iterative: conjugate gradients with incomplete Cholesky, for large N)
+//   Phi c = f - Q b      (sparse SPD, factorised once: mumps: MUMPS LDL^T with METIS ordering
+//                         (supernodal, BLAS 3; needs MPI initialised); direct: Eigen's
+//                         SimplicialLDLT with AMD; iterative: conjugate gradients with
+//                         incomplete Cholesky)
 //   target = Phi_ts c + Q_t b
 // i.e. H = Phi_ts Phi^{-1} (I - Q Q^T) + Q_t Q^T, which interpolates the sources and reproduces
 // linear fields exactly. Conservative: H^T g = (I - Q Q^T) Phi^{-1} Phi_ts^T g + Q Q_t^T g.
 // Every target point needs at least one source point within rho (checked in compute()).
 // Because 1, x, y, z lie in span(Q), (I - Q Q^T) removes them exactly: total force and moment
 // are conserved to round-off and linear fields reproduced whatever the accuracy of the solve.
-// Direct apply allocates nothing; the iterative one allocates a few work vectors per solve.
+// The Eigen direct apply allocates nothing; mumps and iterative allocate work vectors per solve.
 #pragma once
 
 #include "mapping/Mapping.hpp"
@@ -21,6 +23,15 @@
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace fsi::linalg
+{
+class SparseDirectSolver;
+}
 
 namespace fsi::mapping
 {
@@ -33,8 +44,11 @@ struct WendlandParameters
     static constexpr const char* keyword = "rbf-wendland-c2";
     using Strategy = RbfWendlandC2;
     double supportRadius = 0.0; // rho [m]; a few source-node spacings (3..6 is typical)
-    // "direct" (sparse LDLT, fast apply, fill grows fast with N) | "iterative" (CG with
-    // incomplete Cholesky, to iterative_tolerance) | "auto" (direct up to direct_max_points)
+    // "mumps" (MUMPS LDL^T, METIS ordering: fast set-up and apply; needs MPI initialised) |
+    // "direct" (Eigen's simplicial LDLT: no MPI, but its set-up grows fast with N) |
+    // "iterative" (CG with incomplete Cholesky, to iterative_tolerance; slow for large supports)
+    // | "auto" (mumps when MPI is initialised, as in solid-app; otherwise direct up to
+    // direct_max_points source points, iterative above)
     std::string solver = "auto";
     long directMaxPoints = 20000;
     double iterativeTolerance = 1e-10; // relative residual of each CG solve
@@ -48,7 +62,8 @@ class RbfWendlandC2 final : public Mapping
 {
 public:
     // Pre: params.validate() passes. solver "auto" is resolved in compute() by the source size.
-    explicit RbfWendlandC2(const WendlandParameters& params) : params_(params) {}
+    explicit RbfWendlandC2(const WendlandParameters& params);
+    ~RbfWendlandC2() override;
     std::string name() const override { return "rbf-wendland-c2"; }
     void compute(const PointCloud& source, const PointCloud& target) override;
     void applyConsistent(const Eigen::Ref<const Values>& sourceValues,
@@ -59,15 +74,27 @@ public:
     // Non-zeros of the source matrix Phi and of the evaluation matrix Phi_ts (for the log).
     Eigen::Index systemNonZeros() const { return systemNonZeros_; }
     Eigen::Index evaluationNonZeros() const { return evaluation_.nonZeros(); }
-    bool iterative() const { return iterative_; }
+    bool iterative() const { return backend_ == Backend::Iterative; }
+    // The solver compute() chose: "mumps", "direct" or "iterative".
+    std::string solverInUse() const;
     // CG iterations of the last solve (0 for the direct solver).
     Eigen::Index lastIterations() const { return lastIterations_; }
 
 private:
     void solve(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& solution) const;
+    // Factorises system_ (given as its triplets, both triangles) with MUMPS into mumps_.
+    void factoriseWithMumps(const std::vector<Eigen::Triplet<double>>& triplets);
 
+    enum class Backend
+    {
+        Mumps,
+        Direct,
+        Iterative
+    };
     WendlandParameters params_;
-    bool iterative_ = false;
+    Backend backend_ = Backend::Direct;
+    // MUMPS on MPI_COMM_SELF (the mapping runs on solid rank 0); mutable: a solve is const here
+    mutable std::unique_ptr<linalg::SparseDirectSolver> mumps_;
     Eigen::SparseMatrix<double> system_; // Phi, both triangles (the CG solver refers to it)
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> ldlt_;
     Eigen::VectorXd diagonal_; // D of the LDLT
