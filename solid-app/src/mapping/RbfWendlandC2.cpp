@@ -3,9 +3,9 @@
 #include "config/YamlReader.hpp"
 #include <sstream>
 
+#include "linalg/SparseDirectSolver.hpp"
 #include "mapping/KdTree.hpp"
 #include "mapping/RbfSupport.hpp"
-#include "linalg/SparseDirectSolver.hpp"
 
 #include <mpi.h>
 
@@ -136,10 +136,11 @@ bool mpiRunning()
 void RbfWendlandC2::compute(const PointCloud& source, const PointCloud& target)
 {
     params_.validate();
-    if (params_.solver == "mumps" && !mpiRunning())
+    const bool withMpi = mpiRunning();
+    if (params_.solver == "mumps" && !withMpi)
         throw std::runtime_error("mapping rbf-wendland-c2: solver mumps needs MPI (solid-app "
                                  "initialises it); use solver direct or iterative here");
-    if (params_.solver == "mumps" || (params_.solver == "auto" && mpiRunning()))
+    if (params_.solver == "mumps" || (params_.solver == "auto" && withMpi))
         backend_ = Backend::Mumps;
     else if (params_.solver == "iterative" ||
              (params_.solver == "auto" && source.rows() > params_.directMaxPoints))
@@ -206,22 +207,18 @@ void RbfWendlandC2::compute(const PointCloud& source, const PointCloud& target)
 void RbfWendlandC2::factoriseWithMumps(const std::vector<Eigen::Triplet<double>>& triplets)
 {
     // Phi is symmetric positive definite (Wendland C2 in 3-D, distinct points): LDL^T without
-    // pivoting; the lower triangle is enough.
+    // pivoting. Both triangles are passed: the wrapper keeps the lower one.
     linalg::DirectSolverOptions options;
     options.symmetric = true;
     options.positiveDefinite = true;
-    std::vector<int> rows, cols;
-    std::vector<double> values;
-    rows.reserve(triplets.size() / 2 + system_.rows());
-    cols.reserve(rows.capacity());
-    values.reserve(rows.capacity());
-    for (const auto& e : triplets)
-        if (e.row() >= e.col())
-        {
-            rows.push_back(static_cast<int>(e.row()));
-            cols.push_back(static_cast<int>(e.col()));
-            values.push_back(e.value());
-        }
+    std::vector<int> rows(triplets.size()), cols(triplets.size());
+    std::vector<double> values(triplets.size());
+    for (std::size_t k = 0; k < triplets.size(); ++k)
+    {
+        rows[k] = static_cast<int>(triplets[k].row());
+        cols[k] = static_cast<int>(triplets[k].col());
+        values[k] = triplets[k].value();
+    }
     try
     {
         mumps_ = std::make_unique<linalg::SparseDirectSolver>(MPI_COMM_SELF, options);
@@ -244,12 +241,12 @@ void RbfWendlandC2::solve(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& solution)
 {
     if (backend_ == Backend::Mumps)
     {
-        std::vector<double> column(static_cast<std::size_t>(rhs.rows()));
+        mumpsColumn_.resize(static_cast<std::size_t>(rhs.rows())); // sized once
         for (Eigen::Index j = 0; j < rhs.cols(); ++j)
         {
-            Eigen::VectorXd::Map(column.data(), rhs.rows()) = rhs.col(j);
-            mumps_->solve(column);
-            solution.col(j) = Eigen::VectorXd::Map(column.data(), rhs.rows());
+            Eigen::VectorXd::Map(mumpsColumn_.data(), rhs.rows()) = rhs.col(j);
+            mumps_->solve(mumpsColumn_);
+            solution.col(j) = Eigen::VectorXd::Map(mumpsColumn_.data(), rhs.rows());
         }
         return;
     }

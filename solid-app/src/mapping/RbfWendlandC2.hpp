@@ -15,7 +15,8 @@
 // Every target point needs at least one source point within rho (checked in compute()).
 // Because 1, x, y, z lie in span(Q), (I - Q Q^T) removes them exactly: total force and moment
 // are conserved to round-off and linear fields reproduced whatever the accuracy of the solve.
-// The Eigen direct apply allocates nothing; mumps and iterative allocate work vectors per solve.
+// The Eigen direct and the mumps apply allocate nothing here (MUMPS' own solve workspace aside);
+// the iterative one allocates a few work vectors per solve.
 #pragma once
 
 #include "mapping/Mapping.hpp"
@@ -95,7 +96,8 @@ private:
     Backend backend_ = Backend::Direct;
     // MUMPS on MPI_COMM_SELF (the mapping runs on solid rank 0); mutable: a solve is const here
     mutable std::unique_ptr<linalg::SparseDirectSolver> mumps_;
-    Eigen::SparseMatrix<double> system_; // Phi, both triangles (the CG solver refers to it)
+    mutable std::vector<double> mumpsColumn_; // one right-hand side (the wrapper's interface)
+    Eigen::SparseMatrix<double> system_;      // Phi, both triangles (the CG solver refers to it)
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> ldlt_;
     Eigen::VectorXd diagonal_; // D of the LDLT
     Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper,
