@@ -108,20 +108,8 @@ for m in "${runs[@]}"; do
     resume=(--restart)
   fi
   if [ ${#resume[@]} -eq 0 ]; then
-    rm -rf "$fluid"
-    cp -r "$run/mesh/fluid" "$fluid"
-    rm -rf "$fluid"/processor*
-    cp "$run/fluid/system/fsiDict" "$fluid/system/fsiDict"
-    # flow model and convection scheme (tools/setFlow.sh); meshes made before the RAS fields
-    # existed get them from fluid/0.orig
-    for f in "$run/fluid/0.orig"/*; do [ -e "$fluid/0/$(basename "$f")" ] || cp "$f" "$fluid/0/"; done
-    cp "$run/fluid/system/fvSchemes" "$run/fluid/system/fvSolution" "$fluid/system/"
-    "$run/tools/setFlow.sh" "$fluid" --flow "$flow" --scheme "$scheme" > /dev/null
-    if [ "$npf" -gt 1 ]; then
-      foamDictionary "$fluid/system/decomposeParDict" -entry numberOfSubdomains -set "$npf" >/dev/null
-      foamDictionary "$fluid/system/decomposeParDict" -entry method -set hierarchical >/dev/null
-      (cd "$fluid" && decomposePar -force > log.decomposePar 2>&1) || die "decomposePar failed ($fluid/log.decomposePar)"
-    fi
+    # the mesh's fluid case with this case's settings, flow model and scheme, decomposed
+    "$run/tools/fluidCase.sh" "$fluid" "$run/mesh/fluid" "$npf" --flow "$flow" --scheme "$scheme"
   fi
   parallel=""
   [ "$npf" -gt 1 ] && parallel=-parallel

@@ -114,8 +114,7 @@ cp -r "$here/../fluid/0.orig" "$case/0"
 rm -f "$case/0/pointDisplacement"
 "$here/../tools/setFlow.sh" "$case" --flow "$flow" --scheme "$scheme" > /dev/null
 fd() { foamDictionary "$case/$1" -entry "$2" -set "$3" > /dev/null; }
-if [ -n "$tu$lscale" ]; then
-    [ -n "$tu" ] && [ -n "$lscale" ] || die "--tu and --length-scale go together"
+if [ -n "$tu$lscale" ]; then   # both given and checked with the options above
     read -r kIn omegaIn < <("$py" -c "import math, sys
 tu, l = float(sys.argv[1]), float(sys.argv[2])
 assert 0 < tu < 1 and 0 < l < 1
@@ -128,9 +127,7 @@ print('%.6g %.6g' % (k, math.sqrt(k) / (0.09 ** 0.25 * l)))" "$tu" "$lscale" 2> 
     done
     log "inlet turbulence: Tu $tu, length scale $lscale m: k $kIn m^2/s^2, omega $omegaIn 1/s"
 fi
-if [ -n "$initFrom" ]; then
-    [ -f "$initFrom/section2d.csv" ] && [ -d "$initFrom/case" ] \
-        || die "--init-from '$initFrom' is not a finished run2d.sh run (no section2d.csv / case)"
+if [ -n "$initFrom" ]; then   # a finished run2d.sh run, checked with the options above
     # a source case with the solved fields only (mapFields fails on the cell-centre fields);
     # nearest-cell mapping (v1912's default direct method crashes on these meshes)
     src="$out/mapSource" srcCase="$(cd "$initFrom/case" && pwd)"
