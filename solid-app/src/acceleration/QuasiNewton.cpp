@@ -13,9 +13,9 @@ namespace fsi::acceleration
 
 const std::vector<std::string>& QuasiNewtonParameters::commonKeys()
 {
-    static const std::vector<std::string> k{"initial_relaxation", "max_columns",
-                                            "reuse_levels",       "filter",
-                                            "filter_tolerance",   "first_update"};
+    static const std::vector<std::string> k{
+        "initial_relaxation", "max_columns",  "reuse_levels",    "filter",
+        "filter_tolerance",   "first_update", "reused_on_growth"};
     return k;
 }
 
@@ -27,6 +27,7 @@ void QuasiNewtonParameters::parseCommon(const config::Block& b)
     filter = b.choice("filter", {"qr-column", "qr-matrix"}, filter);
     filterTolerance = b.number("filter_tolerance", filterTolerance);
     firstUpdate = b.choice("first_update", {"relaxation", "quasi-newton"}, firstUpdate);
+    reusedOnGrowth = b.choice("reused_on_growth", {"keep", "drop"}, reusedOnGrowth);
 }
 
 std::string QuasiNewtonParameters::echoCommon() const
@@ -34,7 +35,8 @@ std::string QuasiNewtonParameters::echoCommon() const
     std::ostringstream s;
     s << "initial_relaxation: " << initialRelaxation << ", max_columns: " << maxColumns
       << ", reuse_levels: " << reuseLevels << ", filter: " << filter
-      << ", filter_tolerance: " << filterTolerance << ", first_update: " << firstUpdate;
+      << ", filter_tolerance: " << filterTolerance << ", first_update: " << firstUpdate
+      << ", reused_on_growth: " << reusedOnGrowth;
     return s.str();
 }
 
@@ -56,6 +58,9 @@ void QuasiNewtonParameters::validate() const
     if (firstUpdate != "relaxation" && firstUpdate != "quasi-newton")
         throw std::runtime_error("acceleration.first_update '" + firstUpdate +
                                  "' is unknown; use relaxation or quasi-newton");
+    if (reusedOnGrowth != "keep" && reusedOnGrowth != "drop")
+        throw std::runtime_error("acceleration.reused_on_growth '" + reusedOnGrowth +
+                                 "' is unknown; use keep or drop");
 }
 
 QuasiNewton::QuasiNewton(const QuasiNewtonParameters& params)
@@ -70,6 +75,7 @@ void QuasiNewton::beginLevel()
     currentV_.clear();
     currentW_.clear();
     iteration_ = 0;
+    reusedDropped_ = false;
     note_.clear();
 }
 
@@ -84,6 +90,12 @@ Eigen::VectorXd QuasiNewton::update(const Eigen::VectorXd& previousIterate,
                                  std::to_string(past_.front().v.rows()) + " to " +
                                  std::to_string(n) + "; reuse_levels needs a fixed interface");
     Eigen::VectorXd residual = solverOutput - previousIterate;
+    if (iteration_ > 0 && !reusedDropped_ && !past_.empty() && params_.reusedOnGrowth == "drop" &&
+        residual.norm() > previousResidual_.norm())
+    {
+        reusedDropped_ = true;
+        note_ = name() + ": residual grew, reused columns dropped for this level";
+    }
     if (iteration_ > 0)
     {
         currentV_.push_front(residual - previousResidual_);
@@ -101,8 +113,9 @@ Eigen::VectorXd QuasiNewton::update(const Eigen::VectorXd& previousIterate,
 
     // Columns: this level newest first, then the reused levels, capped at max_columns.
     Eigen::Index m = static_cast<Eigen::Index>(currentV_.size());
-    for (const Columns& level : past_)
-        m += level.v.cols();
+    if (!reusedDropped_)
+        for (const Columns& level : past_)
+            m += level.v.cols();
     m = std::min<Eigen::Index>(m, params_.maxColumns);
     lastColumns_ = relaxFirst ? 0 : static_cast<int>(m);
     lastKept_ = 0;
@@ -117,8 +130,8 @@ Eigen::VectorXd QuasiNewton::update(const Eigen::VectorXd& previousIterate,
     const FilteredQr qr = filteredQr(v, params_.filterTolerance, filterKind_);
     lastKept_ = static_cast<int>(qr.kept.size());
     if (!qr.dropped.empty())
-        note_ = name() + ": qr filter dropped " + std::to_string(qr.dropped.size()) + " of " +
-                std::to_string(m) + " columns";
+        note_ += (note_.empty() ? "" : "; ") + name() + ": qr filter dropped " +
+                 std::to_string(qr.dropped.size()) + " of " + std::to_string(m) + " columns";
     if (qr.kept.empty())
     {
         omega_ = params_.initialRelaxation;
@@ -139,7 +152,7 @@ void QuasiNewton::assembleColumns(Eigen::Index m, Eigen::MatrixXd& v, Eigen::Mat
         w.col(j) = currentW_[i];
     }
     for (const Columns& level : past_)
-        for (Eigen::Index i = 0; i < level.v.cols() && j < m; ++i, ++j)
+        for (Eigen::Index i = 0; i < level.v.cols() && j < m && !reusedDropped_; ++i, ++j)
         {
             v.col(j) = level.v.col(i);
             w.col(j) = level.w.col(i);

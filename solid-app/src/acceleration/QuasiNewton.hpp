@@ -33,6 +33,10 @@ struct QuasiNewtonParameters
     std::string filter = "qr-column"; // "qr-column" (|R_ii| < eps |v_i|) | "qr-matrix" (eps ||R||)
     std::string firstUpdate = "relaxation"; // a level's first update: "relaxation" (omega_0) |
                                             // "quasi-newton" (reused columns, if any)
+    // When |r_i| > |r_{i-1}| within a level: "keep" the reused levels' columns (default) |
+    // "drop" them for the rest of the level (their Jacobian no longer fits this level's map,
+    // e.g. after a change of the time step of a viscoelastic solid).
+    std::string reusedOnGrowth = "keep";
 
     // The keys above, for a method's keys() / parse() / echo() (a method may add its own).
     static const std::vector<std::string>& commonKeys();
@@ -81,6 +85,7 @@ private:
     std::deque<Columns> past_;                        // converged levels, newest first
     Eigen::VectorXd previousResidual_, previousOutput_;
     int iteration_ = 0;
+    bool reusedDropped_ = false; // this level ignores the reused columns (reused_on_growth)
     double omega_ = std::numeric_limits<double>::quiet_NaN();
     int lastColumns_ = 0, lastKept_ = 0;
 };

@@ -108,6 +108,8 @@ void CheckpointStore::write(const DriverState& d, const fe::CommittedState& soli
              w.put("previous_interface_displacement", d.previousInterfaceDisplacement);
              w.put("interface_force", d.interfaceForce);
              w.put("previous_interface_force", d.previousInterfaceForce);
+             w.put("secant_meta", d.secantMeta);
+             w.put("secant_values", d.secantValues);
              w.putText("accelerator_type", d.accelerator.type);
              w.put("accelerator_sizes", toDoubles(d.accelerator.sizes));
              w.put("accelerator_values", d.accelerator.values);
@@ -185,6 +187,11 @@ CheckpointStore::Loaded CheckpointStore::loadLatest() const
             d.interfaceForce = r.doubles("interface_force");
         if (r.has("previous_interface_force"))
             d.previousInterfaceForce = r.doubles("previous_interface_force");
+        if (r.has("secant_meta") && r.has("secant_values"))
+        {
+            d.secantMeta = r.ints("secant_meta");
+            d.secantValues = r.doubles("secant_values");
+        }
         d.accelerator.type = r.text("accelerator_type");
         for (double s : r.doubles("accelerator_sizes"))
             d.accelerator.sizes.push_back(static_cast<long>(s));

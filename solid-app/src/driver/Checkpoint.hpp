@@ -43,6 +43,9 @@ struct DriverState
     // Nodal fluid forces F_n, F_{n-1} on the wetted nodes [N] (the structural predictors).
     // Optional in the archive (older checkpoints: empty).
     std::vector<double> interfaceForce, previousInterfaceForce;
+    // The secant predictor's samples (SecantFluidModel::State). Optional in the archive.
+    std::vector<int> secantMeta;
+    std::vector<double> secantValues;
     acceleration::AcceleratorState accelerator;
     double relaxationScale = 1.0; // product of the relaxation cures applied so far
     // Measures of the accepted level that steer the next one: its first coupling residual

@@ -6,6 +6,7 @@
 #include "driver/CouplingLog.hpp"
 #include "driver/FluidAccuracy.hpp"
 #include "driver/RecoveryPolicy.hpp"
+#include "driver/SecantFluidModel.hpp"
 #include "mapping/Quality.hpp"
 #include "schedule/Registry.hpp"
 
@@ -113,6 +114,9 @@ struct CoupledDriver::Impl
     // The nodal fluid force of the accepted levels n and n-1 (the structural predictors); empty
     // when unknown (before the level, after a restart from an older checkpoint).
     Eigen::VectorXd forceLast, forceBeforeLast;
+    // The fluid's loads against its interface input over the last accepted levels (the secant
+    // predictor); rank 0's column choice is broadcast.
+    SecantFluidModel secant;
     double dtLast = 0.0;
     double lastFirstResidual = 0.0; // of the last accepted level [m] (0: none yet)
     mapping::Values nodalDisplacement, pointDisplacement, nodalForceRows; // rank 0 buffers
@@ -168,6 +172,7 @@ struct CoupledDriver::Impl
     LevelRecord solveLevel(schedule::Schedule& schedule);
     LevelAttempt attemptLevel(LevelRecord& record, bool usePredictor);
     std::optional<LevelAttempt> predictFirstIterate(LevelRecord& record, bool usePredictor);
+    std::optional<LevelAttempt> predictSecant(LevelRecord& record, bool twoLevels);
     FluidAccuracy accuracyFor(int iteration, double lastResidual, bool interfaceConverged) const;
     FluidResponse solveFluid(const LevelRecord& record, int iteration,
                              const FluidAccuracy& accuracy, IterationLine& line);
@@ -282,6 +287,9 @@ bool CoupledDriver::Impl::restore(const CheckpointStore::Loaded& saved,
         if (rank == 0)
             accelerator->loadState(d.accelerator);
         schedule.resume(d.level, d.time, d.lastStep);
+        secant.clear();
+        if (!d.secantMeta.empty())
+            secant.load({d.secantMeta, d.secantValues}, n);
     }
     catch (const std::exception& e)
     {
@@ -292,6 +300,13 @@ bool CoupledDriver::Impl::restore(const CheckpointStore::Loaded& saved,
     uBeforeLast = toVector(d.previousInterfaceDisplacement);
     forceLast = toVector(d.interfaceForce);
     forceBeforeLast = toVector(d.previousInterfaceForce);
+    if (d.secantMeta.empty()) // an older checkpoint: the two levels it holds
+        for (const auto* f : {&forceBeforeLast, &forceLast})
+            if (f->size() == n)
+            {
+                secant.addSample(f == &forceLast ? uLast : uBeforeLast, *f);
+                secant.acceptLevel();
+            }
     dtLast = d.lastStep;
     lastFirstResidual = d.firstResidual;
     acceptedTimes = d.acceptedTimes;
@@ -443,6 +458,8 @@ std::optional<LevelAttempt> CoupledDriver::Impl::predictFirstIterate(LevelRecord
             iterate = linearExtrapolation(uLast, uBeforeLast, record.dt / dtLast);
         return std::nullopt;
     }
+    if (kind == "secant")
+        return predictSecant(record, twoLevels);
     if (forceLast.size() != n)
         return std::nullopt; // restarted from a checkpoint without interface forces
     Eigen::VectorXd load = forceLast;
@@ -457,6 +474,45 @@ std::optional<LevelAttempt> CoupledDriver::Impl::predictFirstIterate(LevelRecord
         return LevelAttempt{Outcome::SolidFailed,
                             "the structural predictor's solve failed: " + report.message, 0};
     iterate = toVector(solid.wettedNodeDisplacements());
+    return std::nullopt;
+}
+
+// coupling.predictor secant: the solid at the new time coupled to the secant model of the fluid
+// (SecantFluidModel.hpp); the linear extrapolation while the model has no column or is degenerate.
+std::optional<LevelAttempt> CoupledDriver::Impl::predictSecant(LevelRecord& record, bool twoLevels)
+{
+    std::vector<int> columns = secant.selectColumns();
+    int count = static_cast<int>(columns.size());
+    MPI_Bcast(&count, 1, MPI_INT, 0, comm);
+    columns.resize(count);
+    MPI_Bcast(columns.data(), count, MPI_INT, 0, comm);
+    const auto t0 = Clock::now();
+    const auto solveSolid = [&](const Eigen::VectorXd& load)
+    {
+        const auto report = solid.solve({record.time, record.dt},
+                                        {std::vector<double>(load.data(), load.data() + n)});
+        record.newtonIterations += report.newtonIterations;
+        if (!report.converged)
+            throw std::runtime_error(report.message);
+        return toVector(solid.wettedNodeDisplacements());
+    };
+    std::optional<SecantFluidModel::Prediction> prediction;
+    try
+    {
+        prediction = secant.predict(columns, solveSolid);
+    }
+    catch (const std::runtime_error& e)
+    {
+        summary.solidSeconds += secondsSince(t0);
+        return LevelAttempt{Outcome::SolidFailed,
+                            std::string("the secant predictor's solid solve failed: ") + e.what(),
+                            0};
+    }
+    summary.solidSeconds += secondsSince(t0);
+    if (prediction)
+        iterate = prediction->displacement;
+    else if (twoLevels)
+        iterate = linearExtrapolation(uLast, uBeforeLast, record.dt / dtLast);
     return std::nullopt;
 }
 
@@ -491,6 +547,10 @@ FluidResponse CoupledDriver::Impl::solveFluid(const LevelRecord& record, int ite
         summary.mappingSeconds += line.wallMapping;
     }
     MPI_Bcast(nodalForce.data(), n, MPI_DOUBLE, 0, comm);
+    // The accelerator updates the iterate on rank 0 only; the secant model needs it everywhere
+    // (its predictions call the distributed solid).
+    MPI_Bcast(iterate.data(), n, MPI_DOUBLE, 0, comm);
+    secant.addSample(iterate, nodalForce);
     return response;
 }
 
@@ -543,6 +603,7 @@ void CoupledDriver::Impl::acceptLevel(LevelRecord& record, double levelSeconds,
     accelerator->endLevel();
     solid.acceptLevel();
     fluid->accept(record.level, record.time);
+    secant.acceptLevel();
 
     const double norm = solverOutput.norm();
     record.relativeChange = norm > 0 ? (solverOutput - uLast).norm() / norm : 0.0;
@@ -607,6 +668,9 @@ DriverState CoupledDriver::Impl::state(const LevelRecord& r) const
     d.interfaceForce.assign(forceLast.data(), forceLast.data() + forceLast.size());
     d.previousInterfaceForce.assign(forceBeforeLast.data(),
                                     forceBeforeLast.data() + forceBeforeLast.size());
+    auto samples = secant.save();
+    d.secantMeta = std::move(samples.meta);
+    d.secantValues = std::move(samples.values);
     if (rank == 0)
         d.accelerator = accelerator->saveState();
     d.relaxationScale = recovery.relaxationScale();

@@ -103,8 +103,9 @@ CouplingParameters CouplingParameters::parse(const config::Block& b)
     p.divergenceFactor = b.number("divergence_factor", p.divergenceFactor);
     if (!(p.divergenceFactor > 1))
         b.fail("divergence_factor", "must be > 1");
-    p.predictor = b.choice("predictor", {"constant", "linear", "structural", "structural-linear"},
-                           p.predictor);
+    p.predictor =
+        b.choice("predictor", {"constant", "linear", "structural", "structural-linear", "secant"},
+                 p.predictor);
 
     auto c = b.block("convergence");
     c.allowOnly({"absolute_tolerance", "relative_tolerance"});

@@ -1,0 +1,171 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "driver/SecantFluidModel.hpp"
+
+#include "acceleration/QrFilter.hpp"
+
+#include <Eigen/Dense>
+
+#include <stdexcept>
+
+namespace fsi::driver
+{
+
+namespace
+{
+// A difference column with less than this fraction of new direction is dropped (two samples
+// whose differences to the base point the same way carry no second direction, only noise).
+constexpr double kColumnFilter = 0.05;
+} // namespace
+
+SecantFluidModel::SecantFluidModel(int maxColumns, int maxLevels)
+    : maxColumns_(maxColumns), maxLevels_(maxLevels)
+{
+    if (maxColumns < 1 || maxLevels < 1)
+        throw std::logic_error("SecantFluidModel: maxColumns and maxLevels must be >= 1");
+}
+
+void SecantFluidModel::addSample(const Eigen::VectorXd& u, const Eigen::VectorXd& force)
+{
+    if (u.size() != force.size() || (!samples_.empty() && u.size() != samples_[0].u.size()))
+        throw std::logic_error("SecantFluidModel: interface vectors of different sizes");
+    samples_.push_front({u, force, currentLevel_, false});
+}
+
+void SecantFluidModel::acceptLevel()
+{
+    if (samples_.empty() || samples_[0].level != currentLevel_)
+        return;
+    samples_[0].accepted = true;
+    ++currentLevel_;
+    while (!samples_.empty() && samples_.back().level < currentLevel_ - 1 - maxLevels_)
+        samples_.pop_back();
+}
+
+void SecantFluidModel::clear()
+{
+    samples_.clear();
+}
+
+SecantFluidModel::State SecantFluidModel::save() const
+{
+    State state;
+    state.meta.push_back(currentLevel_);
+    for (const auto& sample : samples_)
+    {
+        state.meta.push_back(sample.level);
+        state.meta.push_back(sample.accepted ? 1 : 0);
+        state.values.insert(state.values.end(), sample.u.data(), sample.u.data() + sample.u.size());
+        state.values.insert(state.values.end(), sample.force.data(),
+                            sample.force.data() + sample.force.size());
+    }
+    return state;
+}
+
+void SecantFluidModel::load(const State& state, int n)
+{
+    const std::size_t count = state.meta.empty() ? 0 : (state.meta.size() - 1) / 2;
+    if (state.meta.empty() || state.meta.size() != 1 + 2 * count ||
+        state.values.size() != 2 * count * static_cast<std::size_t>(n))
+        throw std::runtime_error("the secant predictor's samples do not fit an interface of " +
+                                 std::to_string(n / 3) + " nodes");
+    clear();
+    currentLevel_ = state.meta[0];
+    const double* data = state.values.data();
+    for (std::size_t i = 0; i < count; ++i, data += 2 * n)
+        samples_.push_back({Eigen::Map<const Eigen::VectorXd>(data, n),
+                            Eigen::Map<const Eigen::VectorXd>(data + n, n), state.meta[1 + 2 * i],
+                            state.meta[2 + 2 * i] != 0});
+}
+
+int SecantFluidModel::levels() const
+{
+    int count = 0;
+    for (const auto& s : samples_)
+        count += s.accepted ? 1 : 0;
+    return count;
+}
+
+int SecantFluidModel::base() const
+{
+    for (std::size_t i = 0; i < samples_.size(); ++i)
+        if (samples_[i].accepted)
+            return static_cast<int>(i);
+    return -1;
+}
+
+std::vector<int> SecantFluidModel::candidates() const
+{
+    std::vector<int> accepted, others;
+    const int b = base();
+    for (int i = b + 1; i < static_cast<int>(samples_.size()); ++i)
+        (samples_[i].accepted ? accepted : others).push_back(i);
+    accepted.insert(accepted.end(), others.begin(), others.end());
+    return accepted;
+}
+
+Eigen::MatrixXd SecantFluidModel::differences(const std::vector<int>& others, bool forces) const
+{
+    const auto& b = samples_[base()];
+    Eigen::MatrixXd d(b.u.size(), static_cast<Eigen::Index>(others.size()));
+    for (std::size_t j = 0; j < others.size(); ++j)
+        d.col(static_cast<Eigen::Index>(j)) =
+            forces ? Eigen::VectorXd(b.force - samples_[others[j]].force)
+                   : Eigen::VectorXd(b.u - samples_[others[j]].u);
+    return d;
+}
+
+std::vector<int> SecantFluidModel::selectColumns() const
+{
+    if (base() < 0)
+        return {};
+    const std::vector<int> all = candidates();
+    if (all.empty())
+        return {};
+    const auto qr = acceleration::filteredQr(differences(all, false), kColumnFilter,
+                                             acceleration::QrFilterKind::Column);
+    std::vector<int> kept;
+    for (int i : qr.kept)
+        if (static_cast<int>(kept.size()) < maxColumns_)
+            kept.push_back(all[i]);
+    return kept;
+}
+
+std::optional<SecantFluidModel::Prediction>
+SecantFluidModel::predict(const std::vector<int>& columns, const SolidSolve& solve) const
+{
+    const int k = static_cast<int>(columns.size());
+    if (k == 0)
+        return std::nullopt;
+    for (int j : columns)
+        if (j <= base() || j >= static_cast<int>(samples_.size()))
+            throw std::logic_error("SecantFluidModel: no such sample");
+    const Eigen::VectorXd& un = samples_[base()].u;
+    const Eigen::VectorXd& fn = samples_[base()].force;
+    const Eigen::MatrixXd w = differences(columns, true);
+    const auto qr = acceleration::filteredQr(differences(columns, false), 0.0,
+                                             acceleration::QrFilterKind::Column);
+    if (static_cast<int>(qr.kept.size()) != k)
+        return std::nullopt; // a zero column
+    Prediction p;
+    p.columns = k;
+    const Eigen::VectorXd b = solve(fn);
+    Eigen::MatrixXd z(un.size(), k);
+    for (int i = 0; i < k; ++i)
+        z.col(i) = solve(fn + w.col(i)) - b;
+    p.solidSolves = k + 1;
+
+    // V^+ x = R^{-1} Q^T x.
+    const auto pseudoInverse = [&](const Eigen::MatrixXd& x) -> Eigen::MatrixXd
+    { return qr.r.triangularView<Eigen::Upper>().solve(qr.q.transpose() * x); };
+    const Eigen::MatrixXd a = Eigen::MatrixXd::Identity(k, k) - pseudoInverse(z);
+    const Eigen::FullPivLU<Eigen::MatrixXd> lu(a);
+    if (!lu.isInvertible())
+        return std::nullopt;
+    const Eigen::VectorXd c = lu.solve(pseudoInverse(b - un));
+    if (!c.allFinite())
+        return std::nullopt;
+    p.displacement = b + z * c;
+    return p;
+}
+
+} // namespace fsi::driver

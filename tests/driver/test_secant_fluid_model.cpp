@@ -1,0 +1,124 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// SecantFluidModel (coupling.predictor: secant) with an affine "fluid" F(u) = f0 + J u of low
+// rank and an affine "solid" S(F) = s0 + C F: once the samples' differences span the directions
+// the fluid responds to (the row space of J), the predictor returns the coupled fixed point
+// u* = S(F(u*)) exactly, wherever u* lies.
+#include "driver/SecantFluidModel.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+
+using fsi::driver::SecantFluidModel;
+
+namespace
+{
+constexpr int kSize = 12; // interface vector length (4 nodes x 3)
+
+struct AffineProblem
+{
+    Eigen::MatrixXd j, c;   // fluid Jacobian (rank 2), solid compliance
+    Eigen::MatrixXd right;  // the directions of u the fluid responds to (row space of j)
+    Eigen::VectorXd f0, s0; // affine parts
+    int solves = 0;
+
+    AffineProblem()
+    {
+        std::srand(7);
+        const Eigen::MatrixXd left = Eigen::MatrixXd::Random(kSize, 2);
+        right = Eigen::MatrixXd::Random(kSize, 2);
+        j = 0.4 * left * right.transpose(); // the fluid responds to two directions only
+        const Eigen::MatrixXd m = Eigen::MatrixXd::Random(kSize, kSize);
+        c = 0.2 * (m * m.transpose() / kSize + Eigen::MatrixXd::Identity(kSize, kSize));
+        f0 = Eigen::VectorXd::Random(kSize);
+        s0 = Eigen::VectorXd::Random(kSize);
+    }
+    Eigen::VectorXd fluid(const Eigen::VectorXd& u) const { return f0 + j * u; }
+    Eigen::VectorXd solid(const Eigen::VectorXd& f)
+    {
+        ++solves;
+        return s0 + c * f;
+    }
+    Eigen::VectorXd fixedPoint() const
+    {
+        const Eigen::MatrixXd a = Eigen::MatrixXd::Identity(kSize, kSize) - c * j;
+        return a.fullPivLu().solve(s0 + c * f0);
+    }
+};
+} // namespace
+
+TEST(SecantFluidModel, ExactForAnAffineFluidOnceItsDirectionsAreSampled)
+{
+    AffineProblem p;
+    SecantFluidModel model(3);
+    // Level 0: three fluid solves at interfaces that differ in the fluid's two directions (and
+    // nothing else); the last one is accepted.
+    const Eigen::VectorXd start = Eigen::VectorXd::Random(kSize);
+    for (int i = 0; i < 3; ++i)
+    {
+        const Eigen::VectorXd u = start + p.right * Eigen::Vector2d::Random();
+        model.addSample(u, p.fluid(u));
+    }
+    model.acceptLevel();
+    const auto columns = model.selectColumns();
+    ASSERT_EQ(columns.size(), 2u);
+    const auto prediction =
+        model.predict(columns, [&](const Eigen::VectorXd& f) { return p.solid(f); });
+    ASSERT_TRUE(prediction.has_value());
+    EXPECT_EQ(prediction->columns, 2);
+    EXPECT_EQ(prediction->solidSolves, 3);
+    EXPECT_EQ(p.solves, 3);
+    const Eigen::VectorXd exact = p.fixedPoint();
+    EXPECT_LT((prediction->displacement - exact).norm(), 1e-12 * exact.norm());
+}
+
+// With one sampled direction only the component of the fluid's answer along it is modelled: the
+// prediction is not exact, and solve() is called once per column plus once.
+TEST(SecantFluidModel, OneColumnModelsOneDirection)
+{
+    AffineProblem p;
+    SecantFluidModel model(1);
+    for (int i = 0; i < 3; ++i)
+    {
+        const Eigen::VectorXd u = Eigen::VectorXd::Random(kSize);
+        model.addSample(u, p.fluid(u));
+    }
+    model.acceptLevel();
+    const auto columns = model.selectColumns();
+    ASSERT_EQ(columns.size(), 1u);
+    const auto prediction =
+        model.predict(columns, [&](const Eigen::VectorXd& f) { return p.solid(f); });
+    ASSERT_TRUE(prediction.has_value());
+    EXPECT_EQ(p.solves, 2);
+    EXPECT_GT((prediction->displacement - p.fixedPoint()).norm(), 1e-6);
+}
+
+// No accepted level, or a single sample: no columns, no prediction, no solid solve.
+TEST(SecantFluidModel, NoColumnsWithoutTwoSamples)
+{
+    AffineProblem p;
+    SecantFluidModel model(3);
+    EXPECT_TRUE(model.selectColumns().empty());
+    const Eigen::VectorXd u = Eigen::VectorXd::Random(kSize);
+    model.addSample(u, p.fluid(u));
+    EXPECT_TRUE(model.selectColumns().empty()); // not accepted yet
+    model.acceptLevel();
+    EXPECT_TRUE(model.selectColumns().empty());
+    EXPECT_FALSE(model.predict({}, [&](const Eigen::VectorXd& f) { return p.solid(f); }));
+    EXPECT_EQ(p.solves, 0);
+}
+
+// Samples of levels older than maxLevels are forgotten.
+TEST(SecantFluidModel, ForgetsLevelsBeyondItsMemory)
+{
+    AffineProblem p;
+    SecantFluidModel model(5, 1);
+    for (int level = 0; level < 4; ++level)
+    {
+        const Eigen::VectorXd u = Eigen::VectorXd::Random(kSize);
+        model.addSample(u, p.fluid(u));
+        model.acceptLevel();
+    }
+    EXPECT_EQ(model.levels(), 2); // the newest and one older level
+    EXPECT_EQ(model.selectColumns().size(), 1u);
+}
