@@ -122,3 +122,40 @@ TEST(SecantFluidModel, ForgetsLevelsBeyondItsMemory)
     EXPECT_EQ(model.levels(), 2); // the newest and one older level
     EXPECT_EQ(model.selectColumns().size(), 1u);
 }
+
+// Restart: a model loaded from save() predicts exactly what the saved one predicts, also after
+// more samples; a state that does not fit the interface size is refused with an error.
+TEST(SecantFluidModel, SaveAndLoadRestoreThePredictor)
+{
+    AffineProblem p;
+    SecantFluidModel model(3);
+    for (int level = 0; level < 3; ++level)
+    {
+        for (int i = 0; i < 2; ++i)
+        {
+            const Eigen::VectorXd u = Eigen::VectorXd::Random(kSize);
+            model.addSample(u, p.fluid(u));
+        }
+        model.acceptLevel();
+    }
+    SecantFluidModel restored(3);
+    restored.load(model.save(), kSize);
+    EXPECT_EQ(restored.levels(), model.levels());
+    const Eigen::VectorXd u = Eigen::VectorXd::Random(kSize);
+    for (SecantFluidModel* m : {&model, &restored})
+    {
+        m->addSample(u, p.fluid(u));
+        m->acceptLevel();
+    }
+    const auto solve = [&](const Eigen::VectorXd& f) { return p.solid(f); };
+    ASSERT_EQ(restored.selectColumns(), model.selectColumns());
+    const auto a = model.predict(model.selectColumns(), solve);
+    const auto b = restored.predict(restored.selectColumns(), solve);
+    ASSERT_TRUE(a && b);
+    EXPECT_EQ((a->displacement - b->displacement).norm(), 0.0);
+
+    auto damaged = model.save();
+    damaged.values.pop_back();
+    EXPECT_THROW(restored.load(damaged, kSize), std::runtime_error);
+    EXPECT_THROW(restored.load(model.save(), kSize + 3), std::runtime_error);
+}
