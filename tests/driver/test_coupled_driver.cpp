@@ -574,6 +574,10 @@ TEST(CoupledDriver, InexactFluidSolvesEndEveryLevelAtTheFinalAccuracy)
         looseSolves += a.isFinal ? 0 : 1;
     EXPECT_GT(looseSolves, 0);
     EXPECT_DOUBLE_EQ(loose.asked.front().forceTolerance, accuracy.maxForceTolerance); // from rest
+    // level 1's first solve is final: level 0's first residual was the distance from rest
+    const std::size_t firstOfLevel1 = loose.summary.history[0].couplingIterations;
+    ASSERT_GT(loose.asked.size(), firstOfLevel1);
+    EXPECT_TRUE(loose.asked[firstOfLevel1].isFinal);
     EXPECT_LT(loose.summary.fluidIterations, tight.summary.fluidIterations);
     std::printf("inexact fluid: %d fluid iterations in %d solves (%d loose) against %d in %d "
                 "all-final solves\n",

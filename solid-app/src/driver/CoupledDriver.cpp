@@ -173,7 +173,8 @@ struct CoupledDriver::Impl
     LevelAttempt attemptLevel(LevelRecord& record, bool usePredictor);
     std::optional<LevelAttempt> predictFirstIterate(LevelRecord& record, bool usePredictor);
     std::optional<LevelAttempt> predictSecant(LevelRecord& record, bool twoLevels);
-    FluidAccuracy accuracyFor(int iteration, double lastResidual, bool interfaceConverged) const;
+    FluidAccuracy accuracyFor(int level, int iteration, double lastResidual,
+                              bool interfaceConverged) const;
     FluidResponse solveFluid(const LevelRecord& record, int iteration,
                              const FluidAccuracy& accuracy, IterationLine& line);
     std::optional<LevelAttempt> judge(LevelRecord& record, const FluidResponse& response,
@@ -376,14 +377,17 @@ LevelRecord CoupledDriver::Impl::solveLevel(schedule::Schedule& schedule)
     }
 }
 
-// The accuracy asked of the fluid for coupling iteration `iteration` (rank 0 decides).
-// lastResidual: |r|/sqrt(n) of the previous iteration (or, at a level's first, of the previous
-// level's first iteration: what a good predictor leaves); interfaceConverged: the interface met
-// its tolerance on a loose flow, so this solve must be final.
-FluidAccuracy CoupledDriver::Impl::accuracyFor(int iteration, double lastResidual,
+// The accuracy asked of the fluid for coupling iteration `iteration` of level `level` (rank 0
+// decides). lastResidual: |r|/sqrt(n) of the previous iteration (or, at a level's first, of the
+// previous level's first iteration: what a good predictor leaves); interfaceConverged: the
+// interface met its tolerance on a loose flow, so this solve must be final. The run's first
+// solve (from rest, nothing known) is the loosest; the first solve of level 1 is final, since
+// level 0's first residual measured the distance from the undeformed interface, not a
+// predictor's miss.
+FluidAccuracy CoupledDriver::Impl::accuracyFor(int level, int iteration, double lastResidual,
                                                bool interfaceConverged) const
 {
-    if (interfaceConverged)
+    if (interfaceConverged || (iteration == 1 && level == 1))
         return forcing.finalAccuracy();
     const double expected = iteration == 1 && lastFirstResidual <= 0.0 ? -1.0 : lastResidual;
     return forcing.forIterate(expected, rms(iterate));
@@ -401,7 +405,8 @@ LevelAttempt CoupledDriver::Impl::attemptLevel(LevelRecord& record, bool usePred
     for (int it = 1; it <= params.maxIterations; ++it)
     {
         IterationLine line = iterationLine(record, it);
-        const FluidAccuracy accuracy = accuracyFor(it, lastResidual, interfaceConverged);
+        const FluidAccuracy accuracy =
+            accuracyFor(record.level, it, lastResidual, interfaceConverged);
         const FluidResponse response = solveFluid(record, it, accuracy, line);
 
         const auto t0 = Clock::now();
