@@ -1,18 +1,25 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// A linear model of the fluid's answer to the interface shape, learnt from accepted levels, and
-// the level predictor built on it (coupling.predictor: secant).
+// A linear model of the fluid's answer to the interface shape, learnt from past fluid solves,
+// and the level predictor built on it (coupling.predictor: secant).
 //
-// The quasi-steady loads depend on time only through the interface: between accepted levels
-// n-j and n the fluid force changed by F_n - F_{n-j} because the interface moved by
-// u_n - u_{n-j}. With those differences as the columns of V (displacements) and W (forces),
+// The quasi-steady loads depend on time only through the interface. Each fluid solve is a sample
+// (interface input u_s [m], nodal loads F_s [N]). The base is the last accepted level's final
+// solve (u_n, F_n); the columns of V and W are the differences u_n - u_s and F_n - F_s to the
+// other samples of that level and of the maxLevels levels before it (accepted states first,
+// then the coupling iterations, newest first; a column with less than 5 % of new direction
+// (QR filter) is dropped; at most maxColumns):
 //   F(u) ~ F_n + W c,   c = argmin |V c - (u - u_n)|      (a secant model, zero response off
 //                                                          the span of V)
-// The predictor solves the solid at the new time coupled to that model. The solid is affine in
-// its loads at a fixed level (small strain, law linear in the strain): u(c) = b + Z c with
-// b = S(F_n), Z_i = S(F_n + W_i) - b, so c solves the small system (I - V^+ Z) c = V^+ (b - u_n).
-// It costs 1 + columns solid re-solves and no fluid solve. Where the loads do not depend on the
-// interface, or depend on it linearly within the span of V, it is the level's exact solution.
+// The level differences alone do not do: a level's step mixes the bending that the load change
+// causes with the twist that causes it, and a model from those steps sees a spurious feedback
+// loop of gain ~1 (cases/hydrofoil/README.md); the coupling iterations perturb the interface in
+// other mixes. The predictor solves the solid at the new time coupled to the model. The solid
+// is affine in its loads at a fixed level (small strain, law linear in the strain): u(c) = b + Z c
+// with b = S(F_n), Z_i = S(F_n + W_i) - b, so c solves the small system
+// (I - V^+ Z) c = V^+ (b - u_n). It costs 1 + columns solid re-solves and no fluid solve. Where
+// the loads depend on the interface linearly within the span of V, it is the level's exact
+// coupled solution.
 #pragma once
 
 #include <Eigen/Core>
@@ -29,7 +36,8 @@ namespace fsi::driver
 class SecantFluidModel
 {
 public:
-    // maxColumns >= 1: differences to at most that many older levels are kept.
+    // maxColumns >= 1: columns used at most; maxLevels >= 1: older levels whose samples are kept
+    // besides the last accepted one.
     explicit SecantFluidModel(int maxColumns = 4, int maxLevels = 3);
 
     // Adds a fluid solve of the current level: its interface input u [m] and the nodal fluid
