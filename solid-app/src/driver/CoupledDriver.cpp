@@ -114,9 +114,10 @@ struct CoupledDriver::Impl
     // The nodal fluid force of the accepted levels n and n-1 (the structural predictors); empty
     // when unknown (before the level, after a restart from an older checkpoint).
     Eigen::VectorXd forceLast, forceBeforeLast;
-    // The fluid's loads against its interface input over the last accepted levels (the secant
-    // predictor); rank 0's column choice is broadcast.
+    // The fluid's loads against its interface input over the last accepted levels (only with
+    // coupling.predictor secant; rank 0's column choice is broadcast).
     SecantFluidModel secant;
+    bool secantSamples = params.predictor == "secant";
     double dtLast = 0.0;
     double lastFirstResidual = 0.0; // of the last accepted level [m] (0: none yet)
     mapping::Values nodalDisplacement, pointDisplacement, nodalForceRows; // rank 0 buffers
@@ -552,10 +553,13 @@ FluidResponse CoupledDriver::Impl::solveFluid(const LevelRecord& record, int ite
         summary.mappingSeconds += line.wallMapping;
     }
     MPI_Bcast(nodalForce.data(), n, MPI_DOUBLE, 0, comm);
-    // The accelerator updates the iterate on rank 0 only; the secant model needs it everywhere
-    // (its predictions call the distributed solid).
-    MPI_Bcast(iterate.data(), n, MPI_DOUBLE, 0, comm);
-    secant.addSample(iterate, nodalForce);
+    if (secantSamples)
+    {
+        // The accelerator updates the iterate on rank 0 only; the secant model needs it on every
+        // rank (its predictions call the distributed solid).
+        MPI_Bcast(iterate.data(), n, MPI_DOUBLE, 0, comm);
+        secant.addSample(iterate, nodalForce);
+    }
     return response;
 }
 
@@ -673,9 +677,12 @@ DriverState CoupledDriver::Impl::state(const LevelRecord& r) const
     d.interfaceForce.assign(forceLast.data(), forceLast.data() + forceLast.size());
     d.previousInterfaceForce.assign(forceBeforeLast.data(),
                                     forceBeforeLast.data() + forceBeforeLast.size());
-    auto samples = secant.save();
-    d.secantMeta = std::move(samples.meta);
-    d.secantValues = std::move(samples.values);
+    if (secantSamples)
+    {
+        auto samples = secant.save();
+        d.secantMeta = std::move(samples.meta);
+        d.secantValues = std::move(samples.values);
+    }
     if (rank == 0)
         d.accelerator = accelerator->saveState();
     d.relaxationScale = recovery.relaxationScale();
