@@ -9,6 +9,9 @@
 
 #include <Eigen/Dense>
 
+#include <optional>
+#include <vector>
+
 using fsi::driver::SecantFluidModel;
 
 namespace
@@ -39,6 +42,22 @@ struct AffineProblem
         ++solves;
         return s0 + c * f;
     }
+    // `count` fluid solves at the interfaces at() returns, the level accepted on the last.
+    template <class Interface>
+    void sampleLevel(SecantFluidModel& model, int count, Interface at) const
+    {
+        for (int i = 0; i < count; ++i)
+        {
+            const Eigen::VectorXd u = at();
+            model.addSample(u, fluid(u));
+        }
+        model.acceptLevel();
+    }
+    std::optional<SecantFluidModel::Prediction> predict(const SecantFluidModel& model,
+                                                        const std::vector<int>& columns)
+    {
+        return model.predict(columns, [&](const Eigen::VectorXd& f) { return solid(f); });
+    }
     Eigen::VectorXd fixedPoint() const
     {
         const Eigen::MatrixXd a = Eigen::MatrixXd::Identity(kSize, kSize) - c * j;
@@ -54,16 +73,11 @@ TEST(SecantFluidModel, ExactForAnAffineFluidOnceItsDirectionsAreSampled)
     // Level 0: three fluid solves at interfaces that differ in the fluid's two directions (and
     // nothing else); the last one is accepted.
     const Eigen::VectorXd start = Eigen::VectorXd::Random(kSize);
-    for (int i = 0; i < 3; ++i)
-    {
-        const Eigen::VectorXd u = start + p.right * Eigen::Vector2d::Random();
-        model.addSample(u, p.fluid(u));
-    }
-    model.acceptLevel();
+    p.sampleLevel(model, 3,
+                  [&] { return Eigen::VectorXd(start + p.right * Eigen::Vector2d::Random()); });
     const auto columns = model.selectColumns();
     ASSERT_EQ(columns.size(), 2u);
-    const auto prediction =
-        model.predict(columns, [&](const Eigen::VectorXd& f) { return p.solid(f); });
+    const auto prediction = p.predict(model, columns);
     ASSERT_TRUE(prediction.has_value());
     EXPECT_EQ(prediction->columns, 2);
     EXPECT_EQ(prediction->solidSolves, 3);
@@ -78,16 +92,10 @@ TEST(SecantFluidModel, OneColumnModelsOneDirection)
 {
     AffineProblem p;
     SecantFluidModel model(1);
-    for (int i = 0; i < 3; ++i)
-    {
-        const Eigen::VectorXd u = Eigen::VectorXd::Random(kSize);
-        model.addSample(u, p.fluid(u));
-    }
-    model.acceptLevel();
+    p.sampleLevel(model, 3, [] { return Eigen::VectorXd(Eigen::VectorXd::Random(kSize)); });
     const auto columns = model.selectColumns();
     ASSERT_EQ(columns.size(), 1u);
-    const auto prediction =
-        model.predict(columns, [&](const Eigen::VectorXd& f) { return p.solid(f); });
+    const auto prediction = p.predict(model, columns);
     ASSERT_TRUE(prediction.has_value());
     EXPECT_EQ(p.solves, 2);
     EXPECT_GT((prediction->displacement - p.fixedPoint()).norm(), 1e-6);
@@ -104,7 +112,7 @@ TEST(SecantFluidModel, NoColumnsWithoutTwoSamples)
     EXPECT_TRUE(model.selectColumns().empty()); // not accepted yet
     model.acceptLevel();
     EXPECT_TRUE(model.selectColumns().empty());
-    EXPECT_FALSE(model.predict({}, [&](const Eigen::VectorXd& f) { return p.solid(f); }));
+    EXPECT_FALSE(p.predict(model, {}));
     EXPECT_EQ(p.solves, 0);
 }
 
@@ -114,11 +122,7 @@ TEST(SecantFluidModel, ForgetsLevelsBeyondItsMemory)
     AffineProblem p;
     SecantFluidModel model(5, 1);
     for (int level = 0; level < 4; ++level)
-    {
-        const Eigen::VectorXd u = Eigen::VectorXd::Random(kSize);
-        model.addSample(u, p.fluid(u));
-        model.acceptLevel();
-    }
+        p.sampleLevel(model, 1, [] { return Eigen::VectorXd(Eigen::VectorXd::Random(kSize)); });
     EXPECT_EQ(model.levels(), 2); // the newest and one older level
     EXPECT_EQ(model.selectColumns().size(), 1u);
 }
@@ -130,27 +134,16 @@ TEST(SecantFluidModel, SaveAndLoadRestoreThePredictor)
     AffineProblem p;
     SecantFluidModel model(3);
     for (int level = 0; level < 3; ++level)
-    {
-        for (int i = 0; i < 2; ++i)
-        {
-            const Eigen::VectorXd u = Eigen::VectorXd::Random(kSize);
-            model.addSample(u, p.fluid(u));
-        }
-        model.acceptLevel();
-    }
+        p.sampleLevel(model, 2, [] { return Eigen::VectorXd(Eigen::VectorXd::Random(kSize)); });
     SecantFluidModel restored(3);
     restored.load(model.save(), kSize);
     EXPECT_EQ(restored.levels(), model.levels());
     const Eigen::VectorXd u = Eigen::VectorXd::Random(kSize);
     for (SecantFluidModel* m : {&model, &restored})
-    {
-        m->addSample(u, p.fluid(u));
-        m->acceptLevel();
-    }
-    const auto solve = [&](const Eigen::VectorXd& f) { return p.solid(f); };
+        p.sampleLevel(*m, 1, [&] { return u; });
     ASSERT_EQ(restored.selectColumns(), model.selectColumns());
-    const auto a = model.predict(model.selectColumns(), solve);
-    const auto b = restored.predict(restored.selectColumns(), solve);
+    const auto a = p.predict(model, model.selectColumns());
+    const auto b = p.predict(restored, restored.selectColumns());
     ASSERT_TRUE(a && b);
     EXPECT_EQ((a->displacement - b->displacement).norm(), 0.0);
 
