@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
-// mapping-bench [max_points] [--min N] [--kinds a,b,...] [--wendland-radius R] : set-up time,
+// mapping-bench [max_points] [--min N] [--kinds a,b,...] [--wendland-radius R]
+//               [--wendland-solver auto|mumps|direct|iterative] : set-up time,
 // apply time, memory and accuracy of each mapping against interface size, on a synthetic
 // foil-like surface.
 //
@@ -13,7 +14,10 @@
 // Sizes n = 1e3, 3e3, 1e4, 3e4, 1e5, 3e5, 1e6 up to max_points (default 1e5).
 // Kinds: nearest-neighbour, rbf-pu (defaults), rbf-wendland-c2 (support radius 4 mean solid
 // spacings, or R m with --wendland-radius; solver auto: sparse LDLT up to 2e4 source points,
-// CG + incomplete Cholesky above; skipped above 1e5), rbf-thin-plate (dense; skipped above 4e3).
+// CG + incomplete Cholesky above, since the bench runs without MPI; --wendland-solver mumps: MUMPS
+// LDL^T as solid-app uses it, each case then initialises MPI as a singleton in its child
+// process, before the resident-set baseline; skipped above 1e5), rbf-thin-plate (dense; skipped
+// above 4e3). Wendland lines end with solver=S, the solver in use.
 //
 // One line per kind and size:
 //   mapping-bench: kind=K n=N setup_s=X apply_s=X rss_mb=X max_rel_err=X <more fields>
@@ -33,6 +37,7 @@
 #include "mapping/RbfWendlandC2.hpp"
 #include "mapping/Registry.hpp"
 
+#include <mpi.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -175,7 +180,8 @@ template <class F> Timing timePerCall(F&& call)
 }
 
 // One case, in the calling (child) process; prints its line. wendlandRadius [m], 0: 4 spacings.
-void runCase(const std::string& kind, long size, double wendlandRadius)
+void runCase(const std::string& kind, long size, double wendlandRadius,
+             const std::string& wendlandSolver)
 {
     const int nAround = 2 * std::max(2, int(std::lround(std::sqrt(2.0 * size) / 2.0)));
     const PointCloud s = solidFoil(nAround);
@@ -189,7 +195,10 @@ void runCase(const std::string& kind, long size, double wendlandRadius)
     MappingParameters params;
     params.strategy = mappingType(kind).defaults();
     if (auto* w = params.strategy.get<WendlandParameters>())
+    {
         w->supportRadius = wendlandRadius > 0.0 ? wendlandRadius : 4.0 * h;
+        w->solver = wendlandSolver;
+    }
     const double rss0 = statusMiB("VmRSS");
     const bool peakReset = resetPeak();
     const double cpu0 = cpuSeconds(), wall0 = wallSeconds();
@@ -201,12 +210,14 @@ void runCase(const std::string& kind, long size, double wendlandRadius)
     const double linearError = relativeError(mapped, linearExact);
     const Timing conservative = timePerCall([&] { mapping->applyConservative(smoothExact, back); });
     const double peak = statusMiB("VmHWM");
+    const auto* wendland = dynamic_cast<const RbfWendlandC2*>(mapping.get());
+    const std::string solver = wendland ? " solver=" + wendland->solverInUse() : "";
     std::printf("mapping-bench: kind=%s n=%ld setup_s=%.3g apply_s=%.3g rss_mb=%.0f "
                 "max_rel_err=%.2e n_target=%ld setup_wall_s=%.3g apply_wall_s=%.3g "
-                "conservative_s=%.3g peak_rss_mb=%.0f lin_err=%.1e%s\n",
+                "conservative_s=%.3g peak_rss_mb=%.0f lin_err=%.1e%s%s\n",
                 kind.c_str(), long(s.rows()), setupCpu, consistent.cpu, peak - rss0, error,
                 long(t.rows()), setupWall, consistent.wall, conservative.cpu, peak, linearError,
-                peakReset ? "" : " (peak not reset: rss_mb includes the clouds)");
+                solver.c_str(), peakReset ? "" : " (peak not reset: rss_mb includes the clouds)");
     std::fflush(stdout);
 }
 
@@ -225,6 +236,7 @@ try
 {
     long maxPoints = 100000, minPoints = 1000;
     double wendlandRadius = 0.0;
+    std::string wendlandSolver = "auto";
     std::vector<std::string> kinds{"nearest-neighbour", "rbf-pu", "rbf-wendland-c2",
                                    "rbf-thin-plate"};
     for (int a = 1; a < argc; ++a)
@@ -241,12 +253,21 @@ try
         }
         else if (arg == "--wendland-radius" && a + 1 < argc)
             wendlandRadius = std::atof(argv[++a]);
+        else if (arg == "--wendland-solver" && a + 1 < argc)
+        {
+            wendlandSolver = argv[++a];
+            if (wendlandSolver != "auto" && wendlandSolver != "mumps" &&
+                wendlandSolver != "direct" && wendlandSolver != "iterative")
+                throw std::runtime_error("--wendland-solver must be auto, mumps, direct or "
+                                         "iterative (got '" +
+                                         wendlandSolver + "')");
+        }
         else if (!arg.empty() && arg[0] != '-')
             maxPoints = std::atol(arg.c_str());
         else
             throw std::runtime_error("usage: mapping-bench [max_points] [--min N] "
                                      "[--kinds nearest-neighbour,rbf-pu,...] "
-                                     "[--wendland-radius R]");
+                                     "[--wendland-radius R] [--wendland-solver S]");
     }
     for (const std::string& kind : kinds)
         for (long size : {1000L, 3000L, 10000L, 30000L, 100000L, 300000L, 1000000L})
@@ -267,9 +288,14 @@ try
             if (child == 0)
             {
                 int status = 0;
+                // MUMPS needs MPI: a singleton in this child only (fork after MPI_Init is not
+                // allowed, so the parent never initialises it).
+                const bool withMpi = kind == "rbf-wendland-c2" && wendlandSolver == "mumps";
+                if (withMpi)
+                    MPI_Init(nullptr, nullptr);
                 try
                 {
-                    runCase(kind, size, wendlandRadius);
+                    runCase(kind, size, wendlandRadius, wendlandSolver);
                 }
                 catch (const std::exception& e)
                 {
@@ -278,6 +304,8 @@ try
                     status = 1;
                 }
                 std::fflush(stdout);
+                if (withMpi)
+                    MPI_Finalize();
                 std::_Exit(status);
             }
             int status = 0;
