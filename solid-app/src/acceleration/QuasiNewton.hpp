@@ -8,8 +8,10 @@
 // the method (step()). The first update of a level uses constant relaxation
 // u_i = u_{i-1} + omega_0 r_i (first_update "relaxation", the default) or, with
 // first_update "quasi-newton", the method's step from the reused levels' columns when there are
-// any (preCICE: initial relaxation not forced). Any update whose V is empty or filtered away
-// relaxes (told in lastNote()). A new method (e.g. IQN-IMVJ) is one class that implements step().
+// any (preCICE: initial relaxation not forced). With reused_on_growth "drop", once
+// |r_i| > |r_{i-1}| within a level the reused columns are left out for the rest of that level
+// (told in lastNote()). Any update whose V is empty or filtered away relaxes (told in
+// lastNote()). A new method (e.g. IQN-IMVJ) is one class that implements step().
 // Restart state: sizes = {n, L, m_1..m_L} (L stored levels, m_l columns), values = for each
 // level V then W, column-major.
 #pragma once
