@@ -302,11 +302,12 @@ bool CoupledDriver::Impl::restore(const CheckpointStore::Loaded& saved,
     uBeforeLast = toVector(d.previousInterfaceDisplacement);
     forceLast = toVector(d.interfaceForce);
     forceBeforeLast = toVector(d.previousInterfaceForce);
-    if (d.secantMeta.empty()) // an older checkpoint: the two levels it holds
-        for (const auto* f : {&forceBeforeLast, &forceLast})
-            if (f->size() == n)
+    if (secantSamples && d.secantMeta.empty()) // an older checkpoint: the two levels it holds
+        for (const auto& [u, force] :
+             {std::pair{&uBeforeLast, &forceBeforeLast}, std::pair{&uLast, &forceLast}})
+            if (force->size() == n)
             {
-                secant.addSample(f == &forceLast ? uLast : uBeforeLast, *f);
+                secant.addSample(*u, *force);
                 secant.acceptLevel();
             }
     dtLast = d.lastStep;
