@@ -5,11 +5,15 @@
 #   cases/hydrofoil/mesh.sh --out DIR [--preset coarse|medium|fine] [--tc 0.12] [--cli 0.5]
 #                           [--meanline a08|a08mod] [--layers N] [--np N]
 #                           [--fluid-only | --solid-only] [--curved]
+#                           [--fluid-mesh snappy|cgrid] [--te sharp|blunt]
 #
 # Writes
 #   DIR/geometry/   section.csv, foil.stl (closed), foil.geo (Gmsh), snappy.stl (root extended)
-#   DIR/fluid/      OpenFOAM v1912 case: blockMesh + snappyHexMesh mesh, 0/ U p pointDisplacement,
-#                   checkMesh log (must say "Mesh OK"; the script fails otherwise)
+#   DIR/fluid/      OpenFOAM v1912 case: the mesh (--fluid-mesh snappy: blockMesh + snappyHexMesh,
+#                   no boundary layers; cgrid: tools/cgrid3d.py, the section's C-grid extruded
+#                   along the span with y+ <= 1 layers on sides and tip; --te: its trailing
+#                   edge), 0/ (all fields of fluid/0.orig), checkMesh log (must say "Mesh OK";
+#                   the script fails otherwise)
 #   DIR/solid/      foil-tet10.msh (v4), foil-tet10-msh22.msh (v2), foil-hex20.msh, foil-hex27.msh
 #                   (second order, straight-sided; --curved: Tet10 mid-nodes on the curved
 #                   surface, optimised by Gmsh, slow); physical groups volume, clamped, wetted
@@ -20,8 +24,9 @@ set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 preset=coarse tc=0.12 cli=0.5 meanline=a08 out="" layers="" np=1 doFluid=1 doSolid=1 curved=0
+fluidMesh=snappy te=sharp
 
-usage() { sed -n '3,8p' "$0" | sed 's/^# \{0,1\}//'; }
+usage() { sed -n '3,9p' "$0" | sed 's/^# \{0,1\}//'; }
 die() { echo "error: mesh.sh: $*" >&2; exit 1; }
 
 while [ $# -gt 0 ]; do
@@ -36,12 +41,18 @@ while [ $# -gt 0 ]; do
         --fluid-only) doSolid=0; shift ;;
         --curved) curved=1; shift ;;
         --solid-only) doFluid=0; shift ;;
+        --fluid-mesh) fluidMesh="$2"; shift 2 ;;
+        --te) te="$2"; shift 2 ;;
         -h|--help) usage; exit 0 ;;
         *) die "unknown option '$1' (see --help)" ;;
     esac
 done
 [ -n "$out" ] || die "--out DIR is required (a run folder outside git, e.g. /tmp/hydrofoil-coarse)"
 [ -f "$here/fluid/system/presets/$preset" ] || die "--preset '$preset' unknown; use coarse, medium or fine"
+case "$fluidMesh" in snappy|cgrid) ;; *) die "--fluid-mesh '$fluidMesh' unknown; use snappy or cgrid" ;; esac
+case "$te" in sharp|blunt) ;; *) die "--te '$te' unknown; use sharp or blunt" ;; esac
+[ "$fluidMesh" = cgrid ] || [ "$te" = sharp ] || die "--te applies to --fluid-mesh cgrid only (snappy meshes the section's blunt trailing edge)"
+[ -z "$layers" ] || [ "$fluidMesh" = snappy ] || die "--layers applies to --fluid-mesh snappy only (cgrid has its own layers)"
 out="$(realpath -m "$out")"
 case "$out/" in
     "$here"/*) die "--out '$out' is inside cases/hydrofoil; generate into a run folder outside git" ;;
@@ -58,7 +69,7 @@ esac
 
 log() { echo "[mesh.sh $(date +%H:%M:%S)] $*"; }
 summary="$out/mesh-summary.txt"
-echo "hydrofoil meshes ($(date -u +%FT%TZ)): preset=$preset tc=$tc cli=$cli meanline=$meanline" >> "$summary"
+echo "hydrofoil meshes ($(date -u +%FT%TZ)): preset=$preset tc=$tc cli=$cli meanline=$meanline fluid-mesh=$fluidMesh" >> "$summary"
 
 # ---- geometry ------------------------------------------------------------------------------
 log "geometry (t/c=$tc, C_Li=$cli, $meanline)"
@@ -76,36 +87,51 @@ rm -rf "$tmpgeo"
 if [ "$doFluid" = 1 ]; then
     export WM_PROJECT_DIR="${WM_PROJECT_DIR:-/usr/share/openfoam}"
     case="$out/fluid"
-    log "fluid case -> $case (preset $preset)"
+    log "fluid case -> $case (preset $preset, $fluidMesh)"
     rm -rf "$case"
     mkdir -p "$case/constant/triSurface"
     cp -r "$here/fluid/system" "$here/fluid/constant" "$case/"
     cp "$here/fluid/system/presets/$preset" "$case/system/meshParameters"
-    if [ -n "$layers" ]; then
-        if [ "$layers" -gt 0 ]; then
-            foamDictionary -case "$case" system/meshParameters -entry addLayers -set true > /dev/null
-            foamDictionary -case "$case" system/meshParameters -entry nLayers -set "$layers" > /dev/null
-        else
-            foamDictionary -case "$case" system/meshParameters -entry addLayers -set false > /dev/null
+    if [ "$fluidMesh" = cgrid ]; then
+        /usr/bin/python3 "$here/tools/cgrid3d.py" --preset "$preset" --out "$case/cgrid" --tc "$tc" \
+            --cli "$cli" --meanline "$meanline" --te "$te" | tee -a "$summary"
+        ( cd "$case"
+          gmshToFoam cgrid/cgrid3d.msh > log.gmshToFoam 2>&1 || { tail -20 log.gmshToFoam; exit 1; }
+          /usr/bin/python3 "$here/tools/patchTypes.py" constant/polyMesh/boundary \
+              inlet:patch outlet:patch walls:wall foil:wall )
+        rm -f "$case/cgrid/cgrid3d.msh"
+        # the Laplacian motion inverts the 5 um wall cells: explicit inverse-distance motion
+        cp "$here/fluid/constant/dynamicMeshDict.inverseDistance" "$case/constant/dynamicMeshDict"
+        rm -f "$case"/system/{blockMeshDict,snappyHexMeshDict,surfaceFeatureExtractDict,meshParameters}
+        rm -rf "$case/system/presets" "$case/constant/triSurface"
+    else
+        if [ -n "$layers" ]; then
+            if [ "$layers" -gt 0 ]; then
+                foamDictionary -case "$case" system/meshParameters -entry addLayers -set true > /dev/null
+                foamDictionary -case "$case" system/meshParameters -entry nLayers -set "$layers" > /dev/null
+            else
+                foamDictionary -case "$case" system/meshParameters -entry addLayers -set false > /dev/null
+            fi
         fi
+        cp "$out/geometry/snappy.stl" "$case/constant/triSurface/foil.stl"
+        ( cd "$case"
+          blockMesh > log.blockMesh 2>&1 || { tail -20 log.blockMesh; exit 1; }
+          surfaceFeatureExtract > log.surfaceFeatureExtract 2>&1 || { tail -20 log.surfaceFeatureExtract; exit 1; }
+          if [ "$np" -gt 1 ]; then
+              foamDictionary system/decomposeParDict -entry numberOfSubdomains -set "$np" > /dev/null
+              foamDictionary system/decomposeParDict -entry coeffs/n -set "($np 1 1)" > /dev/null
+              decomposePar -force > log.decomposePar.mesh 2>&1
+              OMPI_MCA_btl_tcp_if_include=lo OMPI_MCA_oob_tcp_if_include=lo \
+              mpirun --allow-run-as-root --oversubscribe -np "$np" snappyHexMesh -overwrite -parallel \
+                  > log.snappyHexMesh 2>&1 || { tail -30 log.snappyHexMesh; exit 1; }
+              reconstructParMesh -constant > log.reconstructParMesh 2>&1
+              rm -rf processor*
+          else
+              snappyHexMesh -overwrite > log.snappyHexMesh 2>&1 || { tail -30 log.snappyHexMesh; exit 1; }
+          fi
+          rm -f constant/polyMesh/{cellLevel,pointLevel,level0Edge,surfaceIndex,refinementHistory} )
     fi
-    cp "$out/geometry/snappy.stl" "$case/constant/triSurface/foil.stl"
     ( cd "$case"
-      blockMesh > log.blockMesh 2>&1 || { tail -20 log.blockMesh; exit 1; }
-      surfaceFeatureExtract > log.surfaceFeatureExtract 2>&1 || { tail -20 log.surfaceFeatureExtract; exit 1; }
-      if [ "$np" -gt 1 ]; then
-          foamDictionary system/decomposeParDict -entry numberOfSubdomains -set "$np" > /dev/null
-          foamDictionary system/decomposeParDict -entry coeffs/n -set "($np 1 1)" > /dev/null
-          decomposePar -force > log.decomposePar.mesh 2>&1
-          OMPI_MCA_btl_tcp_if_include=lo OMPI_MCA_oob_tcp_if_include=lo \
-          mpirun --allow-run-as-root --oversubscribe -np "$np" snappyHexMesh -overwrite -parallel \
-              > log.snappyHexMesh 2>&1 || { tail -30 log.snappyHexMesh; exit 1; }
-          reconstructParMesh -constant > log.reconstructParMesh 2>&1
-          rm -rf processor*
-      else
-          snappyHexMesh -overwrite > log.snappyHexMesh 2>&1 || { tail -30 log.snappyHexMesh; exit 1; }
-      fi
-      rm -f constant/polyMesh/{cellLevel,pointLevel,level0Edge,surfaceIndex,refinementHistory}
       rm -rf 0
       cp -r "$here/fluid/0.orig" 0
       checkMesh > log.checkMesh 2>&1 || true

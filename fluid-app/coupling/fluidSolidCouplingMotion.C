@@ -55,7 +55,8 @@ void Foam::fluidSolidCoupling::moveInterface
         failWith
         (
             "no pointDisplacement field: constant/dynamicMeshDict must select "
-            "dynamicMotionSolverFvMesh with the displacementLaplacian solver"
+            "dynamicMotionSolverFvMesh with a displacement solver "
+            "(displacementLaplacian, fsiInverseDistance)"
         );
     }
     pointPatchVectorField& ppf = pdPtr->boundaryFieldRef()[patchi_];

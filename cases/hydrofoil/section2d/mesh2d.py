@@ -121,11 +121,16 @@ def normals(poly):
     return np.column_stack([t[:, 1], -t[:, 0]])
 
 
-def build(level, tc, cli, meanline, te="blunt"):
+def build(level, tc, cli, meanline, te="blunt", counts=None):
+    """The C-grid of refinement level `level`; `counts` (a dict with n_side, n_te, n_wake,
+    n_normal, y1) replaces the level's cell counts and first-cell height (the 3-D mesher)."""
     k = RATIO ** level
     nSide, nTe = round(N_SIDE_0 * k), 2 * round(N_TE_0 * k / 2)
     nWake, nNormal = round(N_WAKE_0 * k), round(N_NORMAL_0 * k)
     y1 = Y1_0 / k
+    if counts is not None:
+        nSide, nTe, nWake = counts["n_side"], 2 * round(counts["n_te"] / 2), counts["n_wake"]
+        nNormal, y1 = counts["n_normal"], counts["y1"]
 
     upper, lower = naca66a08.section(tc=tc, cli=cli, chord=CHORD, n=2001, meanline=meanline)
     # tunnel frame: suction side (section "upper") towards -y

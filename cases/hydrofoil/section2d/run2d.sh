@@ -87,19 +87,8 @@ EOD
 ( cd "$case"
   gmshToFoam "$mesh/section2d.msh" > log.gmshToFoam 2>&1 || { tail -20 log.gmshToFoam; exit 1; }
   # patch types: Gmsh's physical names come in as generic patches
-  "$py" - constant/polyMesh/boundary <<'EOP'
-import re, sys
-path = sys.argv[1]
-s = open(path).read()
-kinds = {"frontAndBack": "empty", "sides": "symmetry", "foil": "wall",
-         "inlet": "patch", "outlet": "patch"}
-for name, kind in kinds.items():
-    s, n = re.subn(r"(\n\s*%s\s*\{[^}]*?type\s+)\w+;" % name, r"\g<1>%s;" % kind, s)
-    if n != 1:
-        sys.exit("section2d: patch %s not found in %s" % (name, path))
-s = re.sub(r"\n\s*physicalType\s+\w+;", "", s)
-open(path, "w").write(s)
-EOP
+  "$py" "$here/../tools/patchTypes.py" constant/polyMesh/boundary frontAndBack:empty sides:symmetry \
+      foil:wall inlet:patch outlet:patch || exit 1
   checkMesh > log.checkMesh 2>&1 || true
 )
 grep -q "^Mesh OK" "$case/log.checkMesh" || { grep -E "\*\*\*|FATAL" "$case/log.checkMesh" | head; die "checkMesh failed (see $case/log.checkMesh)"; }

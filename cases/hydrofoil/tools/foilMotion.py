@@ -3,10 +3,14 @@
 """Impose a test displacement on the foil patch of a fluid case (ASCII mesh) for mesh-motion checks.
 
     foilMotion.py CASE [--tip-deflection 0.003] [--tip-twist-deg -8] [--time 0]
+                       [--bending beam|shear]
 
 Writes CASE/TIME/pointDisplacement with the foil patch as `fixedValue` and a nonuniform value
-list: a bending deflection d_y = -tip_deflection (z / span)^2 (towards the suction side, -y) and
-a twist about the quarter-chord line (x = 0.3685, y = 0) growing linearly from 0 at the root to
+list: a bending deflection w(z) = d_y = -tip_deflection (z / span)^2 (towards the suction side,
+-y) with, for `--bending beam` (default), the sections turning with the slope as in a beam
+(linear Euler-Bernoulli kinematics, d_z = -y w'(z): what the structural solver's displacement
+does), or, for `shear`, without (d_z = 0: the sections shear, the tip face stays level; the
+check's first version), and a twist about the quarter-chord line (x = 0.3685, y = 0) growing linearly from 0 at the root to
 tip_twist at the tip (negative = nose towards -y... i.e. towards the suction side, lower AOA: the
 paper's tip AOA reaches -8.1 deg). Zero at the clamped root, like the coupled displacement.
 Values are in the order of the patch's mesh points (points in order of first appearance in the
@@ -73,7 +77,7 @@ def meshPoints(faces):
     return order
 
 
-def displacement(pts, tipDeflection, tipTwistDeg):
+def displacement(pts, tipDeflection, tipTwistDeg, bending="beam"):
     x, y, z = pts[:, 0], pts[:, 1], pts[:, 2]
     s = np.clip(z / SPAN, 0.0, None)
     th = math.radians(tipTwistDeg) * s
@@ -82,7 +86,9 @@ def displacement(pts, tipDeflection, tipTwistDeg):
     c, sn = np.cos(-th), np.sin(-th)
     dx = (x - X_QC) * (c - 1) - y * sn
     dy = (x - X_QC) * sn + y * (c - 1) - tipDeflection * s * s
-    return np.column_stack([dx, dy, np.zeros_like(dx)])
+    # beam: the section turns with the slope w' = -2 tip_deflection z / span^2, d_z = -y w'
+    dz = y * 2.0 * tipDeflection * s / SPAN if bending == "beam" else np.zeros_like(dx)
+    return np.column_stack([dx, dy, dz])
 
 
 def main(argv):
@@ -92,13 +98,14 @@ def main(argv):
     p.add_argument("--tip-deflection", type=float, default=0.003)
     p.add_argument("--tip-twist-deg", type=float, default=-8.0)
     p.add_argument("--time", default="0")
+    p.add_argument("--bending", default="beam", choices=["beam", "shear"])
     a = p.parse_args(argv)
     mesh = os.path.join(a.case, "constant", "polyMesh")
     start, count = readPatch(os.path.join(mesh, "boundary"), a.patch)
     faces = readFaces(os.path.join(mesh, "faces"), start, count)
     order = meshPoints(faces)
     pts = readPoints(os.path.join(mesh, "points"))[order]
-    d = displacement(pts, a.tip_deflection, a.tip_twist_deg)
+    d = displacement(pts, a.tip_deflection, a.tip_twist_deg, a.bending)
     target = os.path.join(a.case, a.time, "pointDisplacement")
     with open(target) as f:
         text = f.read()

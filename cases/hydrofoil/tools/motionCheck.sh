@@ -5,20 +5,32 @@
 # using stock moveDynamicMesh, and run checkMesh on the moved mesh.
 #
 #   tools/motionCheck.sh --mesh DIR/fluid --out RUNDIR [--tip-twist-deg -4] [--tip-deflection 0.003]
+#                        [--bending beam|shear]
+# (--bending: see foilMotion.py; beam, the default, turns the sections with the slope as the
+# structural solver's displacement does.) A mesh whose dynamicMeshDict selects fsiInverseDistance
+# needs libfsiMeshMotion.so: taken from the build next to fluid-app on PATH (or FSI_BUILD_DIR).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-mesh="" out="" twist=-4 deflection=0.003
+mesh="" out="" twist=-4 deflection=0.003 bending=beam
 while [ $# -gt 0 ]; do
     case "$1" in
         --mesh) mesh="$2"; shift 2 ;;
         --out) out="$2"; shift 2 ;;
         --tip-twist-deg) twist="$2"; shift 2 ;;
         --tip-deflection) deflection="$2"; shift 2 ;;
+        --bending) bending="$2"; shift 2 ;;
         *) echo "error: motionCheck.sh: unknown option '$1'" >&2; exit 1 ;;
     esac
 done
 [ -f "$mesh/constant/polyMesh/owner" ] || { echo "error: motionCheck.sh: --mesh '$mesh' has no mesh" >&2; exit 1; }
 export WM_PROJECT_DIR="${WM_PROJECT_DIR:-/usr/share/openfoam}"
+if grep -q fsiMeshMotion "$mesh/constant/dynamicMeshDict" 2>/dev/null; then
+    lib=""
+    if [ -n "${FSI_BUILD_DIR:-}" ]; then lib="$FSI_BUILD_DIR/lib"
+    elif command -v fluid-app > /dev/null; then lib="$(dirname "$(command -v fluid-app)")/../lib"; fi
+    [ -f "$lib/libfsiMeshMotion.so" ] || { echo "error: motionCheck.sh: $mesh uses fsiInverseDistance, but libfsiMeshMotion.so was not found (build first; put the build's bin/ on PATH or set FSI_BUILD_DIR)" >&2; exit 1; }
+    export LD_LIBRARY_PATH="$lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+fi
 rm -rf "$out"; mkdir -p "$out"
 cp -r "$mesh/0" "$mesh/constant" "$mesh/system" "$out/"
 cd "$out"
@@ -27,12 +39,12 @@ foamDictionary system/controlDict -entry writeInterval -set 1 > /dev/null
 foamDictionary system/controlDict -entry writeFormat -set ascii > /dev/null
 foamDictionary system/controlDict -entry functions -remove > /dev/null
 foamFormatConvert -constant > log.foamFormatConvert 2>&1
-/usr/bin/python3 "$here/foilMotion.py" . --tip-twist-deg "$twist" --tip-deflection "$deflection"
+/usr/bin/python3 "$here/foilMotion.py" . --tip-twist-deg "$twist" --tip-deflection "$deflection" --bending "$bending"
 moveDynamicMesh > log.moveDynamicMesh 2>&1
 checkMesh -latestTime > log.checkMesh 2>&1 || true
 if grep -q "^Mesh OK" log.checkMesh; then
-    echo "motion twist=$twist deg deflection=$deflection m: Mesh OK"
+    echo "motion twist=$twist deg deflection=$deflection m bending=$bending: Mesh OK ($(grep 'non-orthogonality Max' log.checkMesh | tr -s ' '))"
 else
-    echo "motion twist=$twist deg deflection=$deflection m: FAILED: $(grep '\*\*\*' log.checkMesh | head -3 | tr -s ' ')"
+    echo "motion twist=$twist deg deflection=$deflection m bending=$bending: FAILED: $(grep '\*\*\*' log.checkMesh | head -3 | tr -s ' ')"
     exit 1
 fi

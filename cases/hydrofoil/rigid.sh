@@ -1,0 +1,119 @@
+#!/bin/bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# One rigid steady solve of the 3-D foil (fluid-app -rigid) on a mesh.sh fluid case, with the
+# loads, the foil's first-cell y+ and the cost:
+#
+#   cases/hydrofoil/rigid.sh --mesh DIR/fluid --out RUNDIR [--flow laminar|transition|turbulent]
+#       [--scheme upwind|linearUpwind] [--np 2] [--tolerance 1e-5] [--max-iterations 3000]
+#
+#   --tolerance T        stop when the estimated force error is <= T |F|, held 100 iterations
+#                        (fsiDict rigid/estimateForceError; the 2-D section mode's criterion)
+#   --max-iterations N   cap on SIMPLE iterations (not converged: reported, exit 0)
+#
+# Writes RUNDIR/case (the OpenFOAM case, tools/fluidCase.sh) and RUNDIR/rigid.csv, one row:
+# cells, flow, scheme, iterations, converged, lift = -F_y, drag = F_x (N), root pitching moment
+# M_z about the root quarter chord (0.3685, 0, 0) (N m, the spanwise axis: nose-up positive, as
+# the 2-D section mode's C_M), the foil's first-cell y+ (yPlus function object: max, mean over the faces, the
+# fraction of foil faces with y+ <= 1, separately for the tip faces), CPU and wall seconds.
+# fluid-app must be on PATH (scripts/run and scripts/verify put the build's bin/ first).
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+mesh="" out="" flow=laminar scheme=upwind np=2 tol=1e-5 maxIt=3000
+die() { echo "error: rigid.sh: $*" >&2; exit 2; }
+while [ $# -gt 0 ]; do
+    case "$1" in
+        --mesh) mesh="$2"; shift 2 ;;
+        --out) out="$2"; shift 2 ;;
+        --flow) flow="$2"; shift 2 ;;
+        --scheme) scheme="$2"; shift 2 ;;
+        --np) np="$2"; shift 2 ;;
+        --tolerance) tol="$2"; shift 2 ;;
+        --max-iterations) maxIt="$2"; shift 2 ;;
+        -h|--help) sed -n '3,17p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        *) die "unknown option '$1' (see --help)" ;;
+    esac
+done
+[ -f "$mesh/constant/polyMesh/owner" ] || [ -f "$mesh/constant/polyMesh/owner.gz" ] ||
+    die "--mesh '$mesh' has no constant/polyMesh; run mesh.sh first"
+[ -n "$out" ] || die "--out RUNDIR is required (a run folder outside git)"
+[[ "$np" =~ ^[1-9][0-9]*$ ]] || die "--np '$np' must be a positive integer"
+[[ "$maxIt" =~ ^[1-9][0-9]*$ ]] || die "--max-iterations '$maxIt' must be a positive integer"
+awk -v t="$tol" 'BEGIN{exit !(t + 0 > 0 && t + 0 < 1)}' || die "--tolerance '$tol' must be in (0, 1)"
+command -v fluid-app > /dev/null || die "fluid-app not on PATH (build first; scripts/run sets PATH)"
+export WM_PROJECT_DIR="${WM_PROJECT_DIR:-/usr/share/openfoam}"
+export OMPI_MCA_btl_tcp_if_include=lo OMPI_MCA_oob_tcp_if_include=lo
+log() { echo "[rigid.sh $(date +%H:%M:%S)] $*"; }
+
+mkdir -p "$out"
+case="$out/case"
+"$here/tools/fluidCase.sh" "$case" "$mesh" "$np" --flow "$flow" --scheme "$scheme"
+fd() { foamDictionary "$case/$1" -entry "$2" -set "$3" > /dev/null; }
+fd system/fsiDict rigid/maxIterations "$maxIt"
+fd system/fsiDict rigid/forceTolerance "$tol"
+fd system/fsiDict rigid/residualRequired false
+fd system/fsiDict rigid/estimateForceError true
+fd system/fsiDict rigid/minIterations 100
+fd system/fsiDict rigid/stableIterations 100
+fd system/controlDict endTime "$maxIt"
+fd system/controlDict writeInterval "$maxIt"
+# evaluated after the solve by simpleFoam -postProcess on the written fields (ASCII, so that the
+# per-face values can be read): forces, y+ and the face centres of the foil
+fd system/controlDict writeFormat ascii
+fd system/controlDict functions/yPlus \
+    '{ type yPlus; libs ("libfieldFunctionObjects.so"); writeControl writeTime; patches (foil); }'
+fd system/controlDict functions/cellCentres \
+    '{ type writeCellCentres; libs ("libfieldFunctionObjects.so"); writeControl writeTime; }'
+
+par=()
+[ "$np" -gt 1 ] && par=(-parallel)
+log "fluid-app -rigid on $np rank(s): flow $flow, scheme $scheme, force error <= $tol |F|, cap $maxIt"
+t0=$(date +%s.%N)
+( cd "$case" && /usr/bin/time -f "%U %S" -o time.txt \
+    mpirun --oversubscribe -np "$np" fluid-app -rigid "${par[@]}" > log.fluid-app 2>&1 ) ||
+    { tail -20 "$case/log.fluid-app"; die "fluid-app failed (see $case/log.fluid-app)"; }
+t1=$(date +%s.%N)
+if [ "$np" -gt 1 ]; then
+    ( cd "$case" && reconstructPar -latestTime > log.reconstructPar 2>&1 ) ||
+        die "reconstructPar failed (see $case/log.reconstructPar)"
+fi
+( cd "$case" && simpleFoam -postProcess -latestTime > log.postProcess 2>&1 ) ||
+    { tail -20 "$case/log.postProcess"; die "simpleFoam -postProcess failed (see $case/log.postProcess)"; }
+cells=$(awk '/^ *cells:/{print $2; exit}' "$mesh/log.checkMesh" 2>/dev/null || echo nan)
+
+/usr/bin/python3 - "$case" "$cells" "$flow" "$scheme" "$t0" "$t1" "$out/rigid.csv" <<'EOP'
+import csv, glob, os, re, sys
+import numpy as np
+case, cells, flow, scheme, t0, t1, outCsv = sys.argv[1:]
+row = next(csv.DictReader(open(os.path.join(case, "postProcessing/fsi/forces.csv"))))
+mom = sorted(glob.glob(os.path.join(case, "postProcessing/forces/*/moment.dat")))[-1]
+last = [l for l in open(mom) if l.strip() and not l.startswith("#")][-1]
+mz = float(re.sub(r"[()]", " ", last).split()[3])
+time = sorted((d for d in os.listdir(case) if re.fullmatch(r"[0-9.e+-]+", d) and d != "0"), key=float)[-1]
+
+def patchValues(field):
+    """The foil patch's face values of a written ASCII field (scalars, or vectors as rows)."""
+    s = open(os.path.join(case, time, field)).read()
+    s = s[s.index("boundaryField"):]
+    s = s[re.search(r"\n\s*foil\s*\{", s).end():]
+    m = re.search(r"value\s+nonuniform\s+List<(scalar|vector)>\s*(\d+)\s*\(", s)
+    n, body = int(m.group(2)), s[m.end():]
+    if m.group(1) == "scalar":
+        return np.array(body.split(None, n)[:n], dtype=float)
+    return np.array([v.split() for v in re.findall(r"\(([^()]*)\)", body)[:n]], dtype=float)
+
+yp = patchValues("yPlus")
+cf = patchValues("C")
+tip = cf[:, 2] > 0.100 - 1e-7          # faces of the tip plane z = 0.100
+cpu = sum(map(float, open(os.path.join(case, "time.txt")).read().split()[:2]))
+res = dict(cells=cells, flow=flow, scheme=scheme, iterations=row["simpleIterations"],
+           converged=row["converged"], lift_N="%.6g" % -float(row["Fy"]), drag_N="%.6g" % float(row["Fx"]),
+           root_moment_z_Nm="%.6g" % mz, foil_faces=len(yp), yplus_max="%.3f" % yp.max(),
+           yplus_mean="%.3f" % yp.mean(), yplus_le1_pct="%.2f" % (100.0 * np.mean(yp <= 1.0)),
+           tip_faces=int(tip.sum()), tip_yplus_max="%.3f" % (yp[tip].max() if tip.any() else float("nan")),
+           cpu_s="%.1f" % cpu, wall_s="%.1f" % (float(t1) - float(t0)))
+with open(outCsv, "w", newline="") as f:
+    w = csv.DictWriter(f, fieldnames=list(res))
+    w.writeheader()
+    w.writerow(res)
+print("rigid: " + " ".join("%s=%s" % kv for kv in res.items()))
+EOP

@@ -1,0 +1,321 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// fsiInverseDistance mesh motion (see fsiInverseDistanceMotionSolver.H).
+#include "fsiInverseDistanceMotionSolver.H"
+
+#include "addToRunTimeSelectionTable.H"
+#include "ListListOps.H"
+#include "pointFields.H"
+#include "valuePointPatchFields.H"
+
+namespace Foam
+{
+    defineTypeNameAndDebug(fsiInverseDistanceMotionSolver, 0);
+    addToRunTimeSelectionTable(motionSolver, fsiInverseDistanceMotionSolver, dictionary);
+    addToRunTimeSelectionTable
+    (
+        displacementMotionSolver,
+        fsiInverseDistanceMotionSolver,
+        displacement
+    );
+}
+
+namespace
+{
+
+// Every rank's list, concatenated in rank order, on every rank
+template<class T>
+Foam::Field<T> allGathered(const Foam::Field<T>& local)
+{
+    Foam::List<Foam::Field<T>> all(Foam::Pstream::nProcs());
+    all[Foam::Pstream::myProcNo()] = local;
+    Foam::Pstream::gatherList(all);
+    Foam::Pstream::scatterList(all);
+    return Foam::ListListOps::combine<Foam::Field<T>>(all, Foam::accessOp<Foam::Field<T>>());
+}
+
+// 1 / r^p for r^2 = r2 (p = 2 ... 5; checked at construction)
+inline Foam::scalar inversePower(const Foam::scalar r2, const Foam::label p)
+{
+    switch (p)
+    {
+        case 2: return 1/r2;
+        case 3: return 1/(r2*Foam::sqrt(r2));
+        case 4: return 1/(r2*r2);
+        default: return 1/(r2*r2*Foam::sqrt(r2));
+    }
+}
+
+// Unit normals of a patch's points: the sum of the adjacent faces' area vectors
+Foam::vectorField pointNormals
+(
+    const Foam::faceList& localFaces,
+    const Foam::pointField& localPoints
+)
+{
+    Foam::vectorField n(localPoints.size(), Foam::Zero);
+    for (const Foam::face& f : localFaces)
+    {
+        const Foam::vector a(f.areaNormal(localPoints));
+        for (const Foam::label pointi : f)
+        {
+            n[pointi] += a;
+        }
+    }
+    return n/(Foam::mag(n) + Foam::VSMALL);
+}
+
+// The rotation R maximising tr(R^T K) (the orthogonal polar factor of K, Higham's iteration);
+// the identity if K is singular or not orientation-preserving
+Foam::tensor polarRotation(const Foam::tensor& K)
+{
+    if (!(Foam::det(K) > Foam::SMALL*Foam::pow3(Foam::mag(K))))
+    {
+        return Foam::I;
+    }
+    Foam::tensor X(K);
+    for (int k = 0; k < 30; ++k)
+    {
+        const Foam::tensor next(0.5*(X + Foam::inv(X).T()));
+        const Foam::scalar change = Foam::mag(next - X);
+        X = next;
+        if (change < 1e-14)
+        {
+            break;
+        }
+    }
+    return X;
+}
+
+} // End anonymous namespace
+
+
+Foam::fsiInverseDistanceMotionSolver::fsiInverseDistanceMotionSolver
+(
+    const polyMesh& mesh,
+    const IOdictionary& dict
+)
+:
+    displacementMotionSolver(mesh, dict, typeName)
+{
+    readCoeffs();
+    collectSources();
+}
+
+
+Foam::fsiInverseDistanceMotionSolver::fsiInverseDistanceMotionSolver
+(
+    const polyMesh& mesh,
+    const IOdictionary& dict,
+    const pointVectorField& pointDisplacement,
+    const pointIOField& points0
+)
+:
+    displacementMotionSolver(mesh, dict, pointDisplacement, points0, typeName)
+{
+    readCoeffs();
+    collectSources();
+}
+
+
+void Foam::fsiInverseDistanceMotionSolver::readCoeffs()
+{
+    const word where("constant/dynamicMeshDict " + typeName + "Coeffs");
+    const wordList names(coeffDict().get<wordList>("patches"));
+    patchIDs_.setSize(names.size());
+    forAll(names, i)
+    {
+        patchIDs_[i] = mesh().boundaryMesh().findPatchID(names[i]);
+        if (patchIDs_[i] < 0)
+        {
+            FatalErrorInFunction
+                << where << ": patches: no patch '" << names[i]
+                << "' in the mesh; list the moving patches" << exit(FatalError);
+        }
+    }
+    decayDistance_ = coeffDict().get<scalar>("decayDistance");
+    if (!(decayDistance_ > 0))
+    {
+        FatalErrorInFunction
+            << where << ": decayDistance " << decayDistance_
+            << " must be positive (m): the distance from the patches at which motion stops"
+            << exit(FatalError);
+    }
+    rotationDistance_ = coeffDict().getOrDefault<scalar>("rotationDistance", 0.1*decayDistance_);
+    if (!(rotationDistance_ > 0))
+    {
+        FatalErrorInFunction
+            << where << ": rotationDistance " << rotationDistance_
+            << " must be positive (m): the reach of each patch point's rotation"
+            << exit(FatalError);
+    }
+    exponent_ = coeffDict().getOrDefault<label>("exponent", 5);
+    if (exponent_ < 2 || exponent_ > 5)
+    {
+        FatalErrorInFunction
+            << where << ": exponent " << exponent_ << " must be 2, 3, 4 or 5" << exit(FatalError);
+    }
+}
+
+
+void Foam::fsiInverseDistanceMotionSolver::collectSources()
+{
+    DynamicList<point> pts;
+    DynamicList<scalar> areas;
+    for (const label patchi : patchIDs_)
+    {
+        const polyPatch& pp = mesh().boundaryMesh()[patchi];
+        const labelList& meshPoints = pp.meshPoints();
+        const pointField localPoints0(points0(), meshPoints);
+        scalarField pointArea(meshPoints.size(), Zero);
+        for (const face& f : pp.localFaces())
+        {
+            const scalar share = f.mag(localPoints0)/f.size();
+            for (const label pointi : f)
+            {
+                pointArea[pointi] += share;
+            }
+        }
+        pts.append(localPoints0);
+        areas.append(pointArea);
+    }
+    sourcePoints0_ = allGathered(pointField(pts));
+    sourceAreas_ = allGathered(scalarField(areas));
+    if (sourcePoints0_.empty())
+    {
+        FatalErrorInFunction
+            << "constant/dynamicMeshDict " << typeName << "Coeffs: the moving patches have no "
+            << "points" << exit(FatalError);
+    }
+    reach_ = boundBox(sourcePoints0_, false);
+    reach_.min() -= vector::uniform(decayDistance_);
+    reach_.max() += vector::uniform(decayDistance_);
+}
+
+
+void Foam::fsiInverseDistanceMotionSolver::gatherSourceMotions
+(
+    vectorField& translation,
+    tensorField& rotationMinusI
+) const
+{
+    DynamicList<vector> t;
+    DynamicList<tensor> m;
+    for (const label patchi : patchIDs_)
+    {
+        const pointPatchVectorField& ppf = pointDisplacement_.boundaryField()[patchi];
+        if (!isA<valuePointPatchVectorField>(ppf))
+        {
+            FatalErrorInFunction
+                << "0/pointDisplacement: patch " << ppf.patch().name() << " moves the mesh ("
+                << typeName << ") and must be fixedValue, is " << ppf.type()
+                << exit(FatalError);
+        }
+        const vectorField d(refCast<const valuePointPatchVectorField>(ppf));
+        const polyPatch& pp = mesh().boundaryMesh()[patchi];
+        const pointField p0(points0(), pp.meshPoints());
+        const pointField p1(p0 + d);
+        const vectorField n0(pointNormals(pp.localFaces(), p0));
+        const vectorField n1(pointNormals(pp.localFaces(), p1));
+        const edgeList& edges = pp.edges();
+        const labelListList& pointEdges = pp.pointEdges();
+        forAll(p0, i)
+        {
+            // K = sum_j q_j p_j^T over the edge neighbours j (p: reference edge, q: moved
+            // edge) plus the normals, scaled by the mean squared edge length
+            tensor K(Zero);
+            scalar meanEdge2 = 0;
+            for (const label e : pointEdges[i])
+            {
+                const label j = edges[e].otherVertex(i);
+                K += (p1[j] - p1[i])*(p0[j] - p0[i]);
+                meanEdge2 += magSqr(p0[j] - p0[i]);
+            }
+            meanEdge2 /= max(pointEdges[i].size(), 1);
+            K += meanEdge2*(n1[i]*n0[i]);
+            t.append(d[i]);
+            m.append(polarRotation(K) - I);
+        }
+    }
+    translation = allGathered(vectorField(t));
+    rotationMinusI = allGathered(tensorField(m));
+}
+
+
+Foam::tmp<Foam::pointField> Foam::fsiInverseDistanceMotionSolver::curPoints() const
+{
+    tmp<pointField> tcurPoints(points0() + pointDisplacement_.primitiveField());
+    twoDCorrectPoints(tcurPoints.ref());
+    return tcurPoints;
+}
+
+
+void Foam::fsiInverseDistanceMotionSolver::solve()
+{
+    pointDisplacement_.boundaryFieldRef().updateCoeffs();
+    vectorField t;
+    tensorField m;
+    gatherSourceMotions(t, m);
+    // the rotation part M_i (x - x_i) = M_i x - c_i
+    const vectorField c(m & sourcePoints0_);
+
+    boolList onPatch(mesh().nPoints(), false);
+    for (const label patchi : patchIDs_)
+    {
+        UIndirectList<bool>(onPatch, mesh().boundaryMesh()[patchi].meshPoints()) = true;
+    }
+
+    const pointField& x0 = points0();
+    const scalar D2 = sqr(decayDistance_);
+    const scalar L2 = sqr(rotationDistance_);
+    vectorField& d = pointDisplacement_.primitiveFieldRef();
+    forAll(x0, pointi)
+    {
+        if (onPatch[pointi])
+        {
+            continue;   // set by the patch's fixedValue below
+        }
+        const point& x = x0[pointi];
+        if (!reach_.contains(x))
+        {
+            d[pointi] = Zero;
+            continue;
+        }
+        scalar r2Min = GREAT;
+        label nearest = -1;
+        scalar weight = 0;
+        vector sumT(Zero);      // sum of w t_i - w g c_i
+        tensor sumM(Zero);      // sum of w g M_i
+        forAll(sourcePoints0_, i)
+        {
+            const scalar r2 = magSqr(x - sourcePoints0_[i]);
+            if (r2 < r2Min)
+            {
+                r2Min = r2;
+                nearest = i;
+            }
+            const scalar w = sourceAreas_[i]*inversePower(max(r2, VSMALL), exponent_);
+            weight += w;
+            sumT += w*t[i];
+            if (r2 < L2)
+            {
+                const scalar g = sqr(1 - r2/L2);
+                sumM += (w*g)*m[i];
+                sumT -= (w*g)*c[i];
+            }
+        }
+        if (r2Min >= D2)
+        {
+            d[pointi] = Zero;
+        }
+        else if (r2Min < sqr(SMALL*decayDistance_))
+        {
+            d[pointi] = t[nearest];   // on a patch point (another rank's)
+        }
+        else
+        {
+            const scalar s = sqrt(r2Min/D2);
+            d[pointi] = (1 - s*s*(3 - 2*s))*(sumT + (sumM & x))/weight;
+        }
+    }
+    pointDisplacement_.correctBoundaryConditions();
+}
