@@ -24,7 +24,7 @@ Patches (physical groups): inlet, outlet, walls (the four tunnel walls), foil (s
 trailing-edge face: the FSI interface); volume group fluid.
 
 Usage: cgrid3d.py --preset coarse|medium|fine --out DIR [--tc 0.12 --cli 0.5 --meanline a08]
-                  [--te sharp|blunt]
+                  [--te sharp|blunt] [--full-span]
 Writes DIR/cgrid3d.msh and DIR/cgrid3d-mesh.txt (the parameters and counts, one line).
 Needs the `gmsh` binary (the triangulation of the section above the tip) and numpy.
 """
@@ -48,13 +48,15 @@ HEIGHT = 0.114    # tunnel height (m): wall z = H, tip gap 14 mm
 # spanwise sizes) divided by it, every growth rate g replaced by 1 + (g - 1) / RATIO^level.
 # Plane (coarse): cells along each foil side, across a blunt trailing edge, along the wake and
 # from the foil to the tunnel boundary; first-cell height y1 (m; y+ <= 1 at 2 m/s needs
-# <= 5e-6 at the turbulent suction peak). Span: cell size at the root wall and just below the
-# tip, growth and largest size there; above the tip the first cell is y1, the size at the wall
-# z = H is dz_top, growth and largest size in the gap.
+# <= 5e-6 at the turbulent suction peak). Span: cell size at the root wall, growth and largest
+# size along the foil; next to the tip plane (on both sides) the cells are y1 thick, growing by
+# growth_gap; the size at the wall z = H is dz_top; largest size in the gap dz_max_gap. Above the
+# tip the plane's nodes within gap_relax_length of the foil re-space evenly within h_relax.
 RATIO = 1.3
 COARSE = dict(n_side=40, n_te=4, n_wake=16, n_normal=36, y1=5.0e-6,
-              dz_root=2.0e-3, dz_below_tip=1.0e-3, growth_span=1.25, dz_max=4.5e-3,
-              dz_top=1.0e-3, growth_gap=1.4, dz_max_gap=2.5e-3)
+              dz_root=2.0e-3, growth_span=1.25, dz_max=4.5e-3,
+              dz_top=1.0e-3, growth_gap=1.4, dz_max_gap=2.5e-3,
+              gap_relax_length=1.5e-3, h_relax=1.0e-3)
 LEVELS = {"coarse": 0, "medium": 1, "fine": 2}
 
 
@@ -79,22 +81,30 @@ def parseArgs(argv):
     p.add_argument("--tc", type=float, default=0.12)
     p.add_argument("--cli", type=float, default=0.5)
     p.add_argument("--meanline", default="a08", choices=["a08", "a08mod"])
+    p.add_argument("--full-span", action="store_true",
+                   help="diagnostic: the foil spans the tunnel from wall to wall (no tip, no gap)")
     p.add_argument("--te", default="sharp", choices=["sharp", "blunt"],
                    help="trailing edge of the fluid's foil: sharp (closed; default, the steady "
                         "model of the 2-D study) or blunt (the section's 0.4 mm face)")
     return p.parse_args(argv)
 
 
-def stations(a, b, ha, hb, growth, hmax):
-    """Stations from a to b whose cell size grows from ha at a and from hb at b by the factor
-    `growth` per cell, capped at hmax: with h(z) = min(hmax, ha + (g-1)(z-a), hb + (g-1)(b-z))
-    a geometric sequence has one cell per ln(g)/(g-1) of integral dz/h; the stations are at
-    equal increments of that measure, their number rounded up (no cell exceeds h)."""
+def stations(a, b, ha, hb, ga, gb, hmax):
+    """Stations from a to b whose cell size grows from ha at a by the factor ga per cell and
+    from hb at b by gb, capped at hmax: h(z) = min(hmax, ha + (ga-1)(z-a), hb + (gb-1)(b-z)).
+    A geometric sequence of ratio g has one cell per ln(g)/(g-1) of integral dz/h; the
+    stations are at equal increments of that measure (with the g of the branch that sets h),
+    their number rounded up (no cell exceeds h)."""
     u = np.linspace(0.0, 1.0, 400001)
     z = a + (b - a) * u
-    h = np.minimum(hmax, np.minimum(ha + (growth - 1.0) * (z - a), hb + (growth - 1.0) * (b - z)))
-    perCell = np.log(growth) / (growth - 1.0) if growth > 1.0 else 1.0
-    xi = np.concatenate([[0.0], np.cumsum(0.5 * (1.0 / h[1:] + 1.0 / h[:-1]) * np.diff(z))]) / perCell
+    fromA, fromB = ha + (ga - 1.0) * (z - a), hb + (gb - 1.0) * (b - z)
+    h = np.minimum(hmax, np.minimum(fromA, fromB))
+
+    def perCell(g):
+        return np.log(g) / (g - 1.0) if g > 1.0 else 1.0
+    scale = np.where(h >= hmax, 1.0, np.where(fromA <= fromB, perCell(ga), perCell(gb)))
+    f = 1.0 / (h * scale)
+    xi = np.concatenate([[0.0], np.cumsum(0.5 * (f[1:] + f[:-1]) * np.diff(z))])
     n = int(np.ceil(xi[-1]))
     s = np.interp(np.linspace(0.0, xi[-1], n + 1), xi, z)
     s[0], s[-1] = a, b
@@ -175,48 +185,97 @@ def signedArea(pts, cells):
                         - np.roll(p[:, :, 0], -1, axis=1) * p[:, :, 1], axis=1)
 
 
-def build(name, tc, cli, meanline, te, workdir):
+def build(name, tc, cli, meanline, te, workdir, fullSpan=False):
     c = preset(name)
     g = mesh2d.build(0, tc, cli, meanline, te, counts=c)
     xy, quads, edges, _ = mesh2d.quads(g)
     loop = foilLoop(edges["foil"])
+    if fullSpan:   # diagnostic: no tip; the foil's sides reach the wall z = H
+        z = stations(0.0, HEIGHT, c["dz_root"], c["dz_root"], c["growth_span"], c["growth_span"],
+                     c["dz_max"])
+        return dict(xy=xy, xyAll=xy, quads=quads, tri=np.zeros((0, 3), dtype=int), edges=edges,
+                    z=np.tile(z, (len(xy), 1)), kTip=len(z) - 1, g=g, c=c, xyAt=lambda k: xy)
     extra, tri = triangulateSection(xy, loop, workdir)
     xyAll = np.vstack([xy, extra])
     area = signedArea(xyAll, tri)
     if np.any(np.abs(area) < 1e-16):
         sys.exit("cgrid3d: degenerate triangles in the section")
     tri[area < 0] = tri[area < 0][:, ::-1]
-    zBelow = stations(0.0, SPAN, c["dz_root"], c["dz_below_tip"], c["growth_span"], c["dz_max"])
-    zAbove = gapStations(xyAll, quads, tri, loop, c)
-    nAbove = zAbove.shape[1] - 1
-    # z of every node (plane and section interior) at every station: below the tip planes,
-    # above it the node's own stations
-    z = np.empty((len(xyAll), len(zBelow) + nAbove))
-    z[:, :len(zBelow)] = zBelow
-    z[:, len(zBelow):] = zAbove[:, 1:]
+    # Stations of every node (rows; plane nodes first, then the section's interior): below the
+    # tip plane (root wall to tip) and above it (tip to wall z = H). On both sides the cells
+    # next to the tip plane are y1 thick near the foil (so that the spanwise spacing is
+    # continuous across the plane there: a 1 mm layer under a 5 um one diverged the solver at
+    # the tip edge) and blend into even stations away from it (blendWeights).
+    w = blendWeights(xyAll, quads, tri, loop, c["y1"])
+    fineBelow = stations(0.0, SPAN, c["dz_root"], c["y1"], c["growth_span"], c["growth_gap"],
+                         c["dz_max"])
+    fineAbove = stations(SPAN, HEIGHT, c["y1"], c["dz_top"], c["growth_gap"], c["growth_gap"],
+                         c["dz_max_gap"])
+    # away from the foil the stations below the tip are the clustered ones except where these
+    # close in on the tip plane (spacing under dz_root): there they are even
+    k = int(np.flatnonzero(np.diff(fineBelow) >= c["dz_root"])[-1])
+    evenBelow = np.concatenate([fineBelow[:k], np.linspace(fineBelow[k], SPAN, len(fineBelow) - k)])
+    below = blend(w, fineBelow, evenBelow)
+    above = blend(w, fineAbove, np.linspace(SPAN, HEIGHT, len(fineAbove)))
+    z = np.hstack([below, above[:, 1:]])
+    kTip = len(fineBelow) - 1
+    # Above the tip the plane's wall clustering serves no wall: its y1-wide cells next to the
+    # section's triangles (0.1-1.7 mm) made a 200:1 size jump, and the solver diverged there
+    # (in the gap; the same mesh without a tip, --full-span, converges). So, with height h
+    # above the tip plane, the plane's nodes within gap_relax_length of the foil move to an
+    # evenly graded spacing (relaxedPlane) over h_relax; the tip plane itself keeps the
+    # clustered nodes (it carries the side walls' first cells), and so does the far field.
+    shift = np.vstack([relaxedPlane(g, c["gap_relax_length"]) - xy, np.zeros_like(extra)])
+    if not np.any(shift):
+        sys.exit("cgrid3d: no plane node moves above the tip (gap_relax_length too short?)")
+
+    def xyAt(k):
+        """Node positions (plane, then section interior) at station k (>= kTip)."""
+        u = np.clip((z[:, k] - SPAN) / c["h_relax"], 0.0, 1.0)
+        return xyAll + (u * u * (3.0 - 2.0 * u))[:, None] * shift
     return dict(xy=xy, xyAll=xyAll, quads=quads, tri=tri, edges=edges, z=z,
-                kTip=len(zBelow) - 1, g=g, c=c)
+                kTip=kTip, g=g, c=c, xyAt=xyAt)
 
 
-def gapStations(xyAll, quads, tri, loop, c):
-    """Stations of every node between the tip plane and the wall z = H (rows: nodes).
+def relaxedPlane(g, length, growth=1.1):
+    """The plane's nodes (mesh2d.quads numbering) with every grid line's nodes within `length`
+    of the foil or wake cut re-spaced: the same count J of cells over the same distance s_J,
+    growing by `growth` (first cell s_J (g - 1)/(g^J - 1): about 37 um instead of 5 um on
+    coarse, and 0.17 mm at s_J against the next clustered cell's 0.4 mm). Nodes never come
+    closer to the wall than before. The lines are straight there (mesh2d: the first 10 % of
+    the chord), so the nodes move along them."""
+    pts = g["pts"].copy()
+    for i in range(pts.shape[0]):
+        s = np.hypot(*(pts[i] - pts[i, 0]).T)
+        J = int(np.searchsorted(s, length))
+        if J < 3 or J >= len(s) - 1:
+            continue
+        sNew = s[J] * (growth ** np.arange(J + 1) - 1.0) / (growth ** J - 1.0)
+        sNew = np.maximum(sNew, s[:J + 1])
+        pts[i, 1:J] = pts[i, 0] + (pts[i, 1:J] - pts[i, 0]) * (sNew[1:J] / s[1:J])[:, None]
+    xy, _, _, _ = mesh2d.quads(dict(g, pts=pts))
+    return xy
 
-    Over the tip and near the foil the first cell above the tip plane is y1 thick, growing by
-    growth_gap (the tip's boundary layer); a plane of such cells across the whole tunnel would
-    make cells of y1 x (tens of mm), far beyond checkMesh's aspect-ratio limit (1000). So each
-    node's stations blend the clustered sequence f_k with an even one c_k (same count):
-    z_k - S = w f_k + (1 - w) c_k (monotone for any w in [0, 1]). w = 1 where the node's
-    in-plane cell size s allows a first cell of y1 (s <= s0 = ASPECT f_1: over the section and
-    near the foil), w = 0 (even stations) from s1 = RAMP s0 on, a smoothstep in s between.
-    The ramp is long because a thin blended layer over a stack of planar ones tilts the line
-    between their cell centres: measured on coarse, max non-orthogonality 87 / 80 / 66 / 56 /
-    71 deg for RAMP 4 / 8 / 16 / 32 / 64 (56 deg is the plane's own maximum)."""
+
+def blend(w, fine, even):
+    """Stations per node: w fine + (1 - w) even (monotone for any w in [0, 1])."""
+    return w[:, None] * fine[None, :] + (1.0 - w[:, None]) * even[None, :]
+
+
+def blendWeights(xyAll, quads, tri, loop, y1):
+    """Weight w per node of the clustered spanwise stations (next to the tip plane: first cell
+    y1) against even ones.
+
+    A plane of y1-thick cells across the whole tunnel would make cells of y1 x (tens of mm),
+    far beyond checkMesh's aspect-ratio limit (1000). So w = 1 where the node's in-plane cell
+    size s (its longest edge) allows a first cell of y1 (s <= s0 = ASPECT y1: over the section
+    and near the foil), w = 0 (even stations) from s1 = RAMP s0 on, a smoothstep in s between,
+    smoothed over neighbours (never above the node's own value). The ramp is long because a
+    thin blended layer over a stack of planar ones tilts the line between their cell centres:
+    measured on coarse (clustering above the tip only), max non-orthogonality 87 / 80 / 66 /
+    56 / 71 deg for RAMP 4 / 8 / 16 / 32 / 64 (56 deg is the plane's own maximum)."""
     ASPECT = 500.0
     RAMP = 32.0
-    fine = stations(SPAN, HEIGHT, c["y1"], c["dz_top"], c["growth_gap"], c["dz_max_gap"]) - SPAN
-    n = len(fine) - 1
-    even = np.linspace(0.0, HEIGHT - SPAN, n + 1)
-    # in-plane size at a node: the longest edge of the quads and triangles around it
     size = np.zeros(len(xyAll))
     nbr = [[] for _ in range(len(xyAll))]
     for cells in (quads, tri):
@@ -227,22 +286,20 @@ def gapStations(xyAll, quads, tri, loop, c):
             for u, v in zip(a, b):
                 nbr[u].append(v)
                 nbr[v].append(u)
-    s0 = ASPECT * fine[1]
-    s1 = RAMP * s0
-    u = np.clip((size - s0) / (s1 - s0), 0.0, 1.0)
+    s0 = ASPECT * y1
+    u = np.clip((size - s0) / (RAMP * s0 - s0), 0.0, 1.0)
     wMax = 1.0 - u * u * (3.0 - 2.0 * u)
     fixed = np.zeros(len(xyAll), dtype=bool)
     fixed[loop] = True
     fixed[np.unique(tri)] = True
+    if np.any(size[fixed] > s0):
+        sys.exit("cgrid3d: foil cells longer than %g m: the tip's first cells would exceed the "
+                 "aspect-ratio limit" % s0)
     w = wMax.copy()
-    w[fixed] = 1.0
-    for _ in range(20):   # smooth, never above the node's limit
+    for _ in range(20):
         w = np.minimum(wMax, np.array([np.mean(w[[i] + nbr[i]]) for i in range(len(w))]))
         w[fixed] = 1.0
-    if np.any(size[fixed] > ASPECT * fine[1]):
-        sys.exit("cgrid3d: foil cells longer than %g m: the tip's first cell would exceed the "
-                 "aspect-ratio limit" % (ASPECT * fine[1]))
-    return SPAN + w[:, None] * fine[None, :] + (1.0 - w[:, None]) * even[None, :]
+    return w
 
 
 def writeMsh(path, m):
@@ -296,7 +353,7 @@ def writeMsh(path, m):
             f.write('%d %d "%s"\n' % (3 if nm == "fluid" else 2, tag[nm], nm))
         f.write("$EndPhysicalNames\n$Nodes\n%d\n" % offset[-1])
         for k in range(nz):
-            pts = xyAll if k >= kTip else xy
+            pts = m["xyAt"](k) if k >= kTip else xy
             f.write("".join("%d %.15g %.15g %.15g\n" % (offset[k] + i + 1, x, y, z[i, k])
                             for i, (x, y) in enumerate(pts)))
         f.write("$EndNodes\n$Elements\n%d\n" % len(els))
@@ -312,10 +369,10 @@ def main(argv=None):
     a = parseArgs(argv)
     os.makedirs(a.out, exist_ok=True)
     with tempfile.TemporaryDirectory() as work:
-        m = build(a.preset, a.tc, a.cli, a.meanline, a.te, work)
+        m = build(a.preset, a.tc, a.cli, a.meanline, a.te, work, a.full_span)
     nCells, nPoints, nFoil = writeMsh(os.path.join(a.out, "cgrid3d.msh"), m)
     c, kTip = m["c"], m["kTip"]
-    z = m["z"][m["tri"][0, 0]]   # a node of the section: the tip's stations
+    z = m["z"][m["tri"][0, 0] if len(m["tri"]) else 0]   # a node of the section: the tip's stations
     pts = m["g"]["pts"]
     iA, iB = m["g"]["iA"], m["g"]["iB"]
     side = np.hypot(*(pts[iA:iB + 1, 1] - pts[iA:iB + 1, 0]).T)
@@ -324,7 +381,7 @@ def main(argv=None):
                "first_cell_tip_m=%.3e n_side=%d n_wake=%d n_normal=%d"
                % (a.preset, a.te, nCells, nPoints, nFoil, len(m["quads"]), len(m["tri"]),
                   len(z) - 1, kTip, len(z) - 1 - kTip, side.min(), side.max(),
-                  z[kTip + 1] - z[kTip], c["n_side"], c["n_wake"], c["n_normal"]))
+                  (z[kTip + 1] - z[kTip]) if kTip + 1 < len(z) else float("nan"), c["n_side"], c["n_wake"], c["n_normal"]))
     with open(os.path.join(a.out, "cgrid3d-mesh.txt"), "w") as f:
         f.write(summary + "\n")
     print(summary)
