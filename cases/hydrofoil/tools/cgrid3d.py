@@ -52,11 +52,15 @@ HEIGHT = 0.114    # tunnel height (m): wall z = H, tip gap 14 mm
 # size along the foil; next to the tip plane (on both sides) the cells are y1 thick, growing by
 # growth_gap; the size at the wall z = H is dz_top; largest size in the gap dz_max_gap. Above the
 # tip the plane's nodes within gap_relax_length of the foil re-space evenly within h_relax.
+# Next to the tip plane: first cell y1_tip over the tip, and, within h_thin below it, the
+# sides' first cell thinned by tip_thinning (nodes within thin_length of the wall): without,
+# y+ reached 1.96 at the tip's leading-edge corner (SST, coarse; 0.76 elsewhere on the sides).
 RATIO = 1.3
 COARSE = dict(n_side=40, n_te=4, n_wake=16, n_normal=36, y1=5.0e-6,
               dz_root=2.0e-3, growth_span=1.25, dz_max=4.5e-3,
               dz_top=1.0e-3, growth_gap=1.4, dz_max_gap=2.5e-3,
-              gap_relax_length=1.5e-3, h_relax=1.0e-3)
+              gap_relax_length=1.5e-3, h_relax=1.0e-3,
+              y1_tip=3.5e-6, tip_thinning=0.35, thin_length=1.5e-3, h_thin=2.0e-3)
 LEVELS = {"coarse": 0, "medium": 1, "fine": 2}
 
 
@@ -206,10 +210,10 @@ def build(name, tc, cli, meanline, te, workdir, fullSpan=False):
     # next to the tip plane are y1 thick near the foil (so that the spanwise spacing is
     # continuous across the plane there: a 1 mm layer under a 5 um one diverged the solver at
     # the tip edge) and blend into even stations away from it (blendWeights).
-    w = blendWeights(xyAll, quads, tri, loop, c["y1"])
-    fineBelow = stations(0.0, SPAN, c["dz_root"], c["y1"], c["growth_span"], c["growth_gap"],
+    w = blendWeights(xyAll, quads, tri, loop, c["y1_tip"])
+    fineBelow = stations(0.0, SPAN, c["dz_root"], c["y1_tip"], c["growth_span"], c["growth_gap"],
                          c["dz_max"])
-    fineAbove = stations(SPAN, HEIGHT, c["y1"], c["dz_top"], c["growth_gap"], c["growth_gap"],
+    fineAbove = stations(SPAN, HEIGHT, c["y1_tip"], c["dz_top"], c["growth_gap"], c["growth_gap"],
                          c["dz_max_gap"])
     # away from the foil the stations below the tip are the clustered ones except where these
     # close in on the tip plane (spacing under dz_root): there they are even
@@ -225,33 +229,75 @@ def build(name, tc, cli, meanline, te, workdir, fullSpan=False):
     # above the tip plane, the plane's nodes within gap_relax_length of the foil move to an
     # evenly graded spacing (relaxedPlane) over h_relax; the tip plane itself keeps the
     # clustered nodes (it carries the side walls' first cells), and so does the far field.
-    shift = np.vstack([relaxedPlane(g, c["gap_relax_length"]) - xy, np.zeros_like(extra)])
-    if not np.any(shift):
-        sys.exit("cgrid3d: no plane node moves above the tip (gap_relax_length too short?)")
+    xyThin = scaledPlane(g, c["thin_length"], lambda u: c["tip_thinning"] + (1.0 - c["tip_thinning"]) * u)
+    relax = np.vstack([relaxedPlane(g, c["gap_relax_length"]) - xyThin, np.zeros_like(extra)])
+    thin = xyThin - xy
+    if not np.any(relax) or not np.any(thin):
+        sys.exit("cgrid3d: no plane node moves next to the tip (relax/thin lengths too short?)")
+    n2 = len(xy)
+
+    def smooth(u):
+        u = np.clip(u, 0.0, 1.0)
+        return u * u * (3.0 - 2.0 * u)
 
     def xyAt(k):
-        """Node positions (plane, then section interior) at station k (>= kTip)."""
-        u = np.clip((z[:, k] - SPAN) / c["h_relax"], 0.0, 1.0)
-        return xyAll + (u * u * (3.0 - 2.0 * u))[:, None] * shift
+        """Node positions at station k: the plane's nodes below the tip, the plane's and the
+        section's from the tip plane up."""
+        if k < kTip:
+            return xy + (1.0 - smooth((SPAN - z[:n2, k]) / c["h_thin"]))[:, None] * thin
+        return (np.vstack([xyThin, extra])
+                + smooth((z[:, k] - SPAN) / c["h_relax"])[:, None] * relax)
     return dict(xy=xy, xyAll=xyAll, quads=quads, tri=tri, edges=edges, z=z,
                 kTip=kTip, g=g, c=c, xyAt=xyAt)
 
 
 def relaxedPlane(g, length, growth=1.1):
-    """The plane's nodes (mesh2d.quads numbering) with every grid line's nodes within `length`
-    of the foil or wake cut re-spaced: the same count J of cells over the same distance s_J,
+    """The plane's nodes (mesh2d.quads numbering) with every foil grid line's nodes within
+    `length` of the foil re-spaced: the same count J of cells over the same distance s_J,
     growing by `growth` (first cell s_J (g - 1)/(g^J - 1): about 37 um instead of 5 um on
     coarse, and 0.17 mm at s_J against the next clustered cell's 0.4 mm). Nodes never come
     closer to the wall than before. The lines are straight there (mesh2d: the first 10 % of
     the chord), so the nodes move along them."""
+    def respace(s, J):
+        return np.maximum(s[J] * (growth ** np.arange(J + 1) - 1.0) / (growth ** J - 1.0), s[:J + 1])
+    return movedAlongLines(g, length, respace)
+
+
+def scaledPlane(g, length, factor):
+    """The plane's nodes with each front foil grid line's node at distance s from the wall
+    moved to s factor(smoothstep(s / length)) (factor(1) = 1: nodes from `length` on stay;
+    monotone for an increasing factor). Only the front half of the foil (movedAlongLines
+    foilOnly): y+ exceeded 1 only at the tip's leading-edge corner, and thinned cells at the
+    sharp trailing edge's tip corner reached 86 deg of non-orthogonality at -12 deg / 30 mm."""
+    def rescale(s, J):
+        u = np.clip(s[:J + 1] / length, 0.0, 1.0)
+        return s[:J + 1] * factor(u * u * (3.0 - 2.0 * u))
+    return movedAlongLines(g, length, rescale, foilOnly=True)
+
+
+def movedAlongLines(g, length, newDistances, foilOnly=False, taper=0.025):
+    """The plane's nodes (mesh2d.quads numbering) with the nodes of the grid lines within
+    `length` of the foil or wake cut moved along their line towards newDistances(s, J) (s:
+    the line's node distances from its wall node, J: the first node at least `length` away).
+    Weight of the move: 1 on the foil's lines; on the wake cut's lines falling linearly to 0 at
+    `taper` (m) behind the trailing edge (moving the wake's long cells tilted them to 71 deg;
+    stopping abruptly at the trailing edge folded cells there). foilOnly: only the front of
+    the foil, weight 1 to x/c 0.3 falling to 0 at x/c 0.6 (smoothstep), nothing behind."""
     pts = g["pts"].copy()
+    xTe = 0.5 * (pts[g["iA"], 0, 0] + pts[g["iB"], 0, 0])
+    xLe = pts[g["iA"]:g["iB"] + 1, 0, 0].min()
     for i in range(pts.shape[0]):
+        onFoil = g["iA"] <= i <= g["iB"]
+        if foilOnly:
+            u = np.clip((pts[i, 0, 0] - xLe) / (xTe - xLe) / 0.3 - 1.0, 0.0, 1.0)
+            weight = (1.0 - u * u * (3.0 - 2.0 * u)) if onFoil else 0.0
+        else:
+            weight = 1.0 if onFoil else max(0.0, 1.0 - (pts[i, 0, 0] - xTe) / taper)
         s = np.hypot(*(pts[i] - pts[i, 0]).T)
         J = int(np.searchsorted(s, length))
-        if J < 3 or J >= len(s) - 1:
+        if weight == 0.0 or J < 3 or J >= len(s) - 1:
             continue
-        sNew = s[J] * (growth ** np.arange(J + 1) - 1.0) / (growth ** J - 1.0)
-        sNew = np.maximum(sNew, s[:J + 1])
+        sNew = s[:J + 1] + weight * (newDistances(s, J) - s[:J + 1])
         pts[i, 1:J] = pts[i, 0] + (pts[i, 1:J] - pts[i, 0]) * (sNew[1:J] / s[1:J])[:, None]
     xy, _, _, _ = mesh2d.quads(dict(g, pts=pts))
     return xy
@@ -274,7 +320,7 @@ def blendWeights(xyAll, quads, tri, loop, y1):
     thin blended layer over a stack of planar ones tilts the line between their cell centres:
     measured on coarse (clustering above the tip only), max non-orthogonality 87 / 80 / 66 /
     56 / 71 deg for RAMP 4 / 8 / 16 / 32 / 64 (56 deg is the plane's own maximum)."""
-    ASPECT = 500.0
+    ASPECT = 600.0
     RAMP = 32.0
     size = np.zeros(len(xyAll))
     nbr = [[] for _ in range(len(xyAll))]
@@ -353,7 +399,7 @@ def writeMsh(path, m):
             f.write('%d %d "%s"\n' % (3 if nm == "fluid" else 2, tag[nm], nm))
         f.write("$EndPhysicalNames\n$Nodes\n%d\n" % offset[-1])
         for k in range(nz):
-            pts = m["xyAt"](k) if k >= kTip else xy
+            pts = m["xyAt"](k)
             f.write("".join("%d %.15g %.15g %.15g\n" % (offset[k] + i + 1, x, y, z[i, k])
                             for i, (x, y) in enumerate(pts)))
         f.write("$EndNodes\n$Elements\n%d\n" % len(els))
@@ -376,12 +422,19 @@ def main(argv=None):
     pts = m["g"]["pts"]
     iA, iB = m["g"]["iA"], m["g"]["iB"]
     side = np.hypot(*(pts[iA:iB + 1, 1] - pts[iA:iB + 1, 0]).T)
+    # at the tip plane the sides' first cell is thinned (scaledPlane with c["thin_length"])
+    u = np.clip(side / c["thin_length"], 0.0, 1.0)
+    sideTip = side * (c["tip_thinning"] + (1.0 - c["tip_thinning"]) * u * u * (3.0 - 2.0 * u))
+    if a.full_span:
+        sideTip = side
     summary = ("preset=%s te=%s cells=%d points=%d foil_faces=%d plane_cells=%d section_triangles=%d "
                "span_cells=%d below_tip=%d above_tip=%d first_cell_sides_m=%.3e..%.3e "
-               "first_cell_tip_m=%.3e n_side=%d n_wake=%d n_normal=%d"
+               "first_cell_sides_at_tip_m=%.3e..%.3e first_cell_tip_m=%.3e n_side=%d n_wake=%d "
+               "n_normal=%d"
                % (a.preset, a.te, nCells, nPoints, nFoil, len(m["quads"]), len(m["tri"]),
-                  len(z) - 1, kTip, len(z) - 1 - kTip, side.min(), side.max(),
-                  (z[kTip + 1] - z[kTip]) if kTip + 1 < len(z) else float("nan"), c["n_side"], c["n_wake"], c["n_normal"]))
+                  len(z) - 1, kTip, len(z) - 1 - kTip, side.min(), side.max(), sideTip.min(),
+                  sideTip.max(), (z[kTip + 1] - z[kTip]) if kTip + 1 < len(z) else float("nan"),
+                  c["n_side"], c["n_wake"], c["n_normal"]))
     with open(os.path.join(a.out, "cgrid3d-mesh.txt"), "w") as f:
         f.write(summary + "\n")
     print(summary)
