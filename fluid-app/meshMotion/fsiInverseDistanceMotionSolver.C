@@ -64,26 +64,15 @@ Foam::vectorField pointNormals
     return n/(Foam::mag(n) + Foam::VSMALL);
 }
 
-// The rotation R maximising tr(R^T K) (the orthogonal polar factor of K, Higham's iteration);
-// the identity if K is singular or not orientation-preserving
-Foam::tensor polarRotation(const Foam::tensor& K)
+// F = K P^-1 (the least-squares affine map of a patch point's neighbourhood); the identity
+// if P is singular (degenerate neighbourhood)
+Foam::tensor affineMap(const Foam::tensor& K, const Foam::tensor& P)
 {
-    if (!(Foam::det(K) > Foam::SMALL*Foam::pow3(Foam::mag(K))))
+    if (!(Foam::det(P) > Foam::SMALL*Foam::pow3(Foam::tr(P))))
     {
         return Foam::I;
     }
-    Foam::tensor X(K);
-    for (int k = 0; k < 30; ++k)
-    {
-        const Foam::tensor next(0.5*(X + Foam::inv(X).T()));
-        const Foam::scalar change = Foam::mag(next - X);
-        X = next;
-        if (change < 1e-14)
-        {
-            break;
-        }
-    }
-    return X;
+    return K & Foam::inv(P);
 }
 
 } // End anonymous namespace
@@ -140,12 +129,12 @@ void Foam::fsiInverseDistanceMotionSolver::readCoeffs()
             << " must be positive (m): the distance from the patches at which motion stops"
             << exit(FatalError);
     }
-    rotationDistance_ = coeffDict().getOrDefault<scalar>("rotationDistance", 0.1*decayDistance_);
-    if (!(rotationDistance_ > 0))
+    affineDistance_ = coeffDict().getOrDefault<scalar>("affineDistance", 0.1*decayDistance_);
+    if (!(affineDistance_ > 0))
     {
         FatalErrorInFunction
-            << where << ": rotationDistance " << rotationDistance_
-            << " must be positive (m): the reach of each patch point's rotation"
+            << where << ": affineDistance " << affineDistance_
+            << " must be positive (m): the reach of each patch point's affine part"
             << exit(FatalError);
     }
     exponent_ = coeffDict().getOrDefault<label>("exponent", 5);
@@ -195,7 +184,7 @@ void Foam::fsiInverseDistanceMotionSolver::collectSources()
 void Foam::fsiInverseDistanceMotionSolver::gatherSourceMotions
 (
     vectorField& translation,
-    tensorField& rotationMinusI
+    tensorField& affineMinusI
 ) const
 {
     DynamicList<vector> t;
@@ -220,24 +209,30 @@ void Foam::fsiInverseDistanceMotionSolver::gatherSourceMotions
         const labelListList& pointEdges = pp.pointEdges();
         forAll(p0, i)
         {
-            // K = sum_j q_j p_j^T over the edge neighbours j (p: reference edge, q: moved
-            // edge) plus the normals, scaled by the mean squared edge length
+            // The local affine map F = K P^-1 that best maps the reference edges p_j to the
+            // moved ones q_j (least squares), K = sum q_j p_j^T, P = sum p_j p_j^T, over the
+            // edge neighbours j plus the unit normals (reference to moved), scaled by the
+            // mean squared edge length: a patch's edges leave its normal direction open
             tensor K(Zero);
+            tensor P(Zero);
             scalar meanEdge2 = 0;
             for (const label e : pointEdges[i])
             {
                 const label j = edges[e].otherVertex(i);
-                K += (p1[j] - p1[i])*(p0[j] - p0[i]);
-                meanEdge2 += magSqr(p0[j] - p0[i]);
+                const vector p(p0[j] - p0[i]);
+                K += (p1[j] - p1[i])*p;
+                P += p*p;
+                meanEdge2 += magSqr(p);
             }
             meanEdge2 /= max(pointEdges[i].size(), 1);
             K += meanEdge2*(n1[i]*n0[i]);
+            P += meanEdge2*(n0[i]*n0[i]);
             t.append(d[i]);
-            m.append(polarRotation(K) - I);
+            m.append(affineMap(K, P) - I);
         }
     }
     translation = allGathered(vectorField(t));
-    rotationMinusI = allGathered(tensorField(m));
+    affineMinusI = allGathered(tensorField(m));
 }
 
 
@@ -255,7 +250,7 @@ void Foam::fsiInverseDistanceMotionSolver::solve()
     vectorField t;
     tensorField m;
     gatherSourceMotions(t, m);
-    // the rotation part M_i (x - x_i) = M_i x - c_i
+    // the affine part M_i (x - x_i) = M_i x - c_i
     const vectorField c(m & sourcePoints0_);
 
     boolList onPatch(mesh().nPoints(), false);
@@ -266,7 +261,7 @@ void Foam::fsiInverseDistanceMotionSolver::solve()
 
     const pointField& x0 = points0();
     const scalar D2 = sqr(decayDistance_);
-    const scalar L2 = sqr(rotationDistance_);
+    const scalar L2 = sqr(affineDistance_);
     vectorField& d = pointDisplacement_.primitiveFieldRef();
     forAll(x0, pointi)
     {

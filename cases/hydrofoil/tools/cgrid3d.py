@@ -69,7 +69,9 @@ def preset(name):
     r = RATIO ** LEVELS[name]
     c = {}
     for key, v in COARSE.items():
-        if key.startswith("n_"):
+        if key == "tip_thinning":        # a ratio
+            c[key] = v
+        elif key.startswith("n_"):
             c[key] = int(round(v * r))
         elif key.startswith("growth"):
             c[key] = 1.0 + (v - 1.0) / r
@@ -198,7 +200,8 @@ def build(name, tc, cli, meanline, te, workdir, fullSpan=False):
         z = stations(0.0, HEIGHT, c["dz_root"], c["dz_root"], c["growth_span"], c["growth_span"],
                      c["dz_max"])
         return dict(xy=xy, xyAll=xy, quads=quads, tri=np.zeros((0, 3), dtype=int), edges=edges,
-                    z=np.tile(z, (len(xy), 1)), kTip=len(z) - 1, g=g, c=c, xyAt=lambda k: xy)
+                    z=np.tile(z, (len(xy), 1)), kTip=len(z) - 1, g=g, c=c, xyAt=lambda k: xy,
+                    ptsTip=g["pts"])
     extra, tri = triangulateSection(xy, loop, workdir)
     xyAll = np.vstack([xy, extra])
     area = signedArea(xyAll, tri)
@@ -229,7 +232,8 @@ def build(name, tc, cli, meanline, te, workdir, fullSpan=False):
     # above the tip plane, the plane's nodes within gap_relax_length of the foil move to an
     # evenly graded spacing (relaxedPlane) over h_relax; the tip plane itself keeps the
     # clustered nodes (it carries the side walls' first cells), and so does the far field.
-    xyThin = scaledPlane(g, c["thin_length"], lambda u: c["tip_thinning"] + (1.0 - c["tip_thinning"]) * u)
+    xyThin, ptsThin = scaledPlane(g, c["thin_length"],
+                                  lambda u: c["tip_thinning"] + (1.0 - c["tip_thinning"]) * u)
     relax = np.vstack([relaxedPlane(g, c["gap_relax_length"]) - xyThin, np.zeros_like(extra)])
     thin = xyThin - xy
     if not np.any(relax) or not np.any(thin):
@@ -248,7 +252,7 @@ def build(name, tc, cli, meanline, te, workdir, fullSpan=False):
         return (np.vstack([xyThin, extra])
                 + smooth((z[:, k] - SPAN) / c["h_relax"])[:, None] * relax)
     return dict(xy=xy, xyAll=xyAll, quads=quads, tri=tri, edges=edges, z=z,
-                kTip=kTip, g=g, c=c, xyAt=xyAt)
+                kTip=kTip, g=g, c=c, xyAt=xyAt, ptsTip=ptsThin)
 
 
 def relaxedPlane(g, length, growth=1.1):
@@ -260,7 +264,7 @@ def relaxedPlane(g, length, growth=1.1):
     the chord), so the nodes move along them."""
     def respace(s, J):
         return np.maximum(s[J] * (growth ** np.arange(J + 1) - 1.0) / (growth ** J - 1.0), s[:J + 1])
-    return movedAlongLines(g, length, respace)
+    return movedAlongLines(g, length, respace)[0]
 
 
 def scaledPlane(g, length, factor):
@@ -300,7 +304,7 @@ def movedAlongLines(g, length, newDistances, foilOnly=False, taper=0.025):
         sNew = s[:J + 1] + weight * (newDistances(s, J) - s[:J + 1])
         pts[i, 1:J] = pts[i, 0] + (pts[i, 1:J] - pts[i, 0]) * (sNew[1:J] / s[1:J])[:, None]
     xy, _, _, _ = mesh2d.quads(dict(g, pts=pts))
-    return xy
+    return xy, pts
 
 
 def blend(w, fine, even):
@@ -338,9 +342,9 @@ def blendWeights(xyAll, quads, tri, loop, y1):
     fixed = np.zeros(len(xyAll), dtype=bool)
     fixed[loop] = True
     fixed[np.unique(tri)] = True
-    if np.any(size[fixed] > s0):
-        sys.exit("cgrid3d: foil cells longer than %g m: the tip's first cells would exceed the "
-                 "aspect-ratio limit" % s0)
+    if np.any(size[fixed] > 900.0 * y1):   # these keep w = 1: a y1-thick first cell
+        sys.exit("cgrid3d: section cells of %g m: with a %g m first cell over the tip they "
+                 "exceed checkMesh's aspect-ratio limit (1000)" % (size[fixed].max(), y1))
     w = wMax.copy()
     for _ in range(20):
         w = np.minimum(wMax, np.array([np.mean(w[[i] + nbr[i]]) for i in range(len(w))]))
@@ -422,11 +426,8 @@ def main(argv=None):
     pts = m["g"]["pts"]
     iA, iB = m["g"]["iA"], m["g"]["iB"]
     side = np.hypot(*(pts[iA:iB + 1, 1] - pts[iA:iB + 1, 0]).T)
-    # at the tip plane the sides' first cell is thinned (scaledPlane with c["thin_length"])
-    u = np.clip(side / c["thin_length"], 0.0, 1.0)
-    sideTip = side * (c["tip_thinning"] + (1.0 - c["tip_thinning"]) * u * u * (3.0 - 2.0 * u))
-    if a.full_span:
-        sideTip = side
+    ptsTip = m["ptsTip"][iA:iB + 1]     # the plane at the tip (first cells thinned in front)
+    sideTip = np.hypot(*(ptsTip[:, 1] - ptsTip[:, 0]).T)
     summary = ("preset=%s te=%s cells=%d points=%d foil_faces=%d plane_cells=%d section_triangles=%d "
                "span_cells=%d below_tip=%d above_tip=%d first_cell_sides_m=%.3e..%.3e "
                "first_cell_sides_at_tip_m=%.3e..%.3e first_cell_tip_m=%.3e n_side=%d n_wake=%d "
