@@ -10,13 +10,18 @@ Construction
 - The x-y plane is section2d/mesh2d.py's C-grid (grid lines leave the foil along its normals,
   first-cell height y1, geometric growth; the wake cut runs to the outlet), with this preset's
   cell counts. Its outer boundary is the inlet and the side walls y = +-0.254 m.
-- It is extruded along z through stations clustered at the root wall (z = 0), below and above
-  the tip plane, and at the wall z = H. Below the tip the plane has the foil section as a hole:
-  the foil's sides (and the blunt trailing-edge face) are walls, their first cell is y1 thick.
+- It is extruded along z through stations clustered at the root wall (z = 0), on both sides
+  of the tip plane (first cell y1_tip) and at the wall z = H; near the foil only: away from it
+  each node's stations blend into even ones (blendWeights: checkMesh's aspect-ratio limit).
+  Below the tip the plane has the foil section as a hole: the foil's sides (and the blunt
+  trailing-edge face) are walls, their first cell is y1 thick; within h_thin below the tip the
+  front half's first cell is thinned (tip_thinning: the tip's leading-edge corner).
 - Above the tip the hole is filled with a triangulation of the section (Gmsh, on the foil's own
   boundary nodes), extruded as prisms; the tip face is the plane z = 0.100 under them, and the
-  first station above it is y1 away: the tip face has a y1-thick first cell too.
-Every foil face therefore has a first cell of height y1 normal to it (sides and tip; a blunt
+  first station above it is y1_tip away. There the plane's wall clustering, with no wall left,
+  relaxes with height to an evenly graded spacing (relaxedPlane): its y1 cells next to the
+  section's triangles diverged the solver.
+Every foil face therefore has a first cell normal to it of at most y1 (sides and tip; a blunt
 trailing-edge face has the strip's streamwise spacing), i.e. layer coverage 100 % by
 construction; cgrid3d reports the first-cell heights per part of the foil.
 
