@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""Checks of tools/forceConvergence.py and tools/mshinfo.py on small synthetic inputs."""
+"""Checks of tools/forceConvergence.py, tools/mshinfo.py and tools/foilMotion.py on small
+synthetic inputs."""
 import io
 import os
 import sys
@@ -11,6 +12,7 @@ from contextlib import redirect_stdout
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import foilMotion  # noqa: E402
 import forceConvergence as fc  # noqa: E402
 import mshinfo  # noqa: E402
 
@@ -87,6 +89,35 @@ class MshInfo(unittest.TestCase):
                         self.assertEqual(mshinfo.main(["--require", "wetted", p]), 1)
                     finally:
                         sys.stderr = stderr
+
+
+class FoilMotion(unittest.TestCase):
+    def test_beam_and_shear_bending(self):
+        # points of a section at the root, mid-span and tip; no twist
+        pts = np.array([[0.3685, y, z] for z in (0.0, 0.05, 0.1) for y in (-0.003, 0.0, 0.002)])
+        D = 0.03
+        beam = foilMotion.displacement(pts, D, 0.0, "beam")
+        shear = foilMotion.displacement(pts, D, 0.0, "shear")
+        s = pts[:, 2] / foilMotion.SPAN
+        # deflection w = -D (z/s)^2 for both; zero at the clamped root
+        np.testing.assert_allclose(beam[:, 1], -D * s * s, atol=1e-15)
+        np.testing.assert_allclose(shear[:, 1], -D * s * s, atol=1e-15)
+        np.testing.assert_allclose(beam[:3], 0.0, atol=1e-15)
+        # beam: the section turns with the slope w' = -2 D z / s^2: d_z = -y w'
+        np.testing.assert_allclose(beam[:, 2], pts[:, 1] * 2 * D * s / foilMotion.SPAN, atol=1e-15)
+        self.assertAlmostEqual(beam[8, 2], 0.002 * 0.6)   # y = 2 mm at the tip: 1.2 mm
+        np.testing.assert_allclose(shear[:, 2], 0.0)
+
+    def test_twist_is_a_rotation_about_the_quarter_chord(self):
+        pts = np.array([[0.356, 0.0, 0.1], [0.406, 0.0, 0.1], [0.3685, 0.0, 0.1]])
+        d = foilMotion.displacement(pts, 0.0, -12.0, "beam")
+        np.testing.assert_allclose(d[2], 0.0, atol=1e-15)       # the axis stays
+        # lengths from the axis are kept (a rotation); a negative twist moves the nose towards -y
+        # (foilMotion.py's docstring)
+        moved = pts + d
+        np.testing.assert_allclose(np.hypot(*(moved[:2, :2] - [0.3685, 0.0]).T),
+                                   np.hypot(*(pts[:2, :2] - [0.3685, 0.0]).T), rtol=1e-12)
+        self.assertLess(d[0, 1], 0.0)
 
 
 if __name__ == "__main__":
