@@ -213,9 +213,17 @@ def build(name, tc, cli, meanline, te, workdir, fullSpan=False):
     if np.any(np.abs(area) < 1e-16):
         sys.exit("cgrid3d: degenerate triangles in the section")
     tri[area < 0] = tri[area < 0][:, ::-1]
-    # Stations of every node (rows; plane nodes first, then the section's interior): below the
-    # tip plane (root wall to tip) and above it (tip to wall z = H). On both sides the cells
-    # next to the tip plane are y1 thick near the foil (so that the spanwise spacing is
+    z, kTip = spanStations(xyAll, quads, tri, loop, c)
+    xyAt, ptsThin = planeNodesAt(g, xy, extra, z, kTip, c)
+    return dict(xy=xy, xyAll=xyAll, quads=quads, tri=tri, edges=edges, z=z,
+                kTip=kTip, g=g, c=c, xyAt=xyAt, ptsTip=ptsThin)
+
+
+def spanStations(xyAll, quads, tri, loop, c):
+    """z of every node (rows: plane nodes, then the section's interior) at every station, and
+    the index of the tip plane's station."""
+    # Below the tip plane (root wall to tip) and above it (tip to wall z = H). On both sides
+    # the cells next to the tip plane are y1_tip thick near the foil (the spanwise spacing is
     # continuous across the plane there: a 1 mm layer under a 5 um one diverged the solver at
     # the tip edge) and blend into even stations away from it (blendWeights).
     w = blendWeights(xyAll, quads, tri, loop, c["y1_tip"])
@@ -231,12 +239,19 @@ def build(name, tc, cli, meanline, te, workdir, fullSpan=False):
     above = blend(w, fineAbove, np.linspace(SPAN, HEIGHT, len(fineAbove)))
     z = np.hstack([below, above[:, 1:]])
     kTip = len(fineBelow) - 1
+    return z, kTip
+
+
+def planeNodesAt(g, xy, extra, z, kTip, c):
+    """xyAt(k): the node positions at station k (the plane's below the tip, the plane's and the
+    section's from the tip plane up), and the plane's grid-line points at the tip plane."""
     # Above the tip the plane's wall clustering serves no wall: its y1-wide cells next to the
     # section's triangles (0.1-1.7 mm) made a 200:1 size jump, and the solver diverged there
     # (in the gap; the same mesh without a tip, --full-span, converges). So, with height h
     # above the tip plane, the plane's nodes within gap_relax_length of the foil move to an
-    # evenly graded spacing (relaxedPlane) over h_relax; the tip plane itself keeps the
-    # clustered nodes (it carries the side walls' first cells), and so does the far field.
+    # evenly graded spacing (relaxedPlane) over h_relax; the far field keeps its nodes.
+    # Below the tip, within h_thin of it, the front half's first cells thin towards the tip
+    # plane (scaledPlane), which carries the thinned nodes.
     xyThin, ptsThin = scaledPlane(g, c["thin_length"],
                                   lambda u: c["tip_thinning"] + (1.0 - c["tip_thinning"]) * u)
     relax = np.vstack([relaxedPlane(g, c["gap_relax_length"]) - xyThin, np.zeros_like(extra)])
@@ -256,8 +271,7 @@ def build(name, tc, cli, meanline, te, workdir, fullSpan=False):
             return xy + (1.0 - smooth((SPAN - z[:n2, k]) / c["h_thin"]))[:, None] * thin
         return (np.vstack([xyThin, extra])
                 + smooth((z[:, k] - SPAN) / c["h_relax"])[:, None] * relax)
-    return dict(xy=xy, xyAll=xyAll, quads=quads, tri=tri, edges=edges, z=z,
-                kTip=kTip, g=g, c=c, xyAt=xyAt, ptsTip=ptsThin)
+    return xyAt, ptsThin
 
 
 def relaxedPlane(g, length, growth=1.1):
