@@ -724,3 +724,27 @@ TEST(CoupledDriver, SecantPredictorFollowsTheFluidsFeedback)
         EXPECT_LT(first, 0.01 * runs["structural"].summary.history[level].firstResidual) << level;
     }
 }
+
+// coupling.secant.coupling_iterations: every coupling iteration steps with the secant model of
+// the fluid (the solid exact), whose columns stay valid when dt changes the solid's operator;
+// IQN-ILS's reused columns of the whole map do not. Same levels as above, both with the secant
+// predictor: the same end state, and fewer coupling iterations.
+// Observed (1 rank): 13 coupling iterations with the model against 18 with IQN-ILS alone.
+TEST(CoupledDriver, SecantCouplingIterationsNeedFewerIterationsThanIqnIls)
+{
+    const auto visco = viscoelastic({0.6, 0.4}, {0.3, 3.0});
+    auto coupling = couplingWith("iqn-ils", 0.5);
+    coupling.convergence.absoluteTolerance = 1e-12; // [m]; |u| ~ 1e-3 m
+    coupling.time = listOfTimes({0.0, 0.1, 0.4, 1.0, 3.0, 10.0});
+    coupling.predictor = "secant";
+    const double kappa = 1.2 / meanTipResponse(elastic(K, G), F0);
+    const auto iqn = runCoupled(visco, coupling, F0, kappa);
+    coupling.secant.couplingIterations = true;
+    const auto model = runCoupled(visco, coupling, F0, kappa);
+    ASSERT_EQ(model.summary.history.size(), 6u);
+    EXPECT_NEAR(model.meanUy, iqn.meanUy, 1e-9 * std::abs(iqn.meanUy));
+    if (worldRank() == 0)
+        std::printf("coupling iterations: secant model %d, iqn-ils %d\n",
+                    model.summary.couplingIterations, iqn.summary.couplingIterations);
+    EXPECT_LT(model.summary.couplingIterations, iqn.summary.couplingIterations);
+}

@@ -9,6 +9,7 @@
 
 #include <Eigen/Dense>
 
+#include <cstdio>
 #include <optional>
 #include <vector>
 
@@ -53,7 +54,7 @@ struct AffineProblem
         }
         model.acceptLevel();
     }
-    std::optional<SecantFluidModel::Prediction> predict(const SecantFluidModel& model,
+    std::optional<SecantFluidModel::Prediction> predict(SecantFluidModel& model,
                                                         const std::vector<int>& columns)
     {
         return model.predict(columns, [&](const Eigen::VectorXd& f) { return solid(f); });
@@ -151,4 +152,78 @@ TEST(SecantFluidModel, SaveAndLoadRestoreThePredictor)
     damaged.values.pop_back();
     EXPECT_THROW(restored.load(damaged, kSize), std::runtime_error);
     EXPECT_THROW(restored.load(model.save(), kSize + 3), std::runtime_error);
+}
+
+// Coupling iterations with the model (Base::Newest): each fluid solve is a sample, the solid's
+// answer to it is kept (setNewestResponse), and the next iterate solves the solid coupled to the
+// model. On the affine problem, whose plain fixed-point iteration diverges (the fluid's feedback
+// is stronger than the solid), the iteration reaches the fixed point to round-off within a few
+// fluid solves, and its steps call the solid for no sample of the level (only setNewestResponse).
+// Observed: 4 fluid solves to |u - u*| < 1e-10 |u*|.
+TEST(SecantFluidModel, CouplingIterationsReachTheFixedPointWithoutExtraSolidSolves)
+{
+    AffineProblem p;
+    // strong feedback: the spectral radius of the loop S'F' = c j is 1.5
+    p.j *= 1.5 / Eigen::EigenSolver<Eigen::MatrixXd>(p.c * p.j).eigenvalues().cwiseAbs().maxCoeff();
+    const Eigen::VectorXd exact = p.fixedPoint();
+    {
+        // plain fixed-point iteration u <- S(F(u)) diverges here
+        Eigen::VectorXd u = Eigen::VectorXd::Zero(kSize);
+        for (int i = 0; i < 20; ++i)
+            u = p.solid(p.fluid(u));
+        ASSERT_GT((u - exact).norm(), 10 * exact.norm());
+        p.solves = 0;
+    }
+    SecantFluidModel model(kSize);
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(kSize);
+    int fluidSolves = 0;
+    int modelSolidSolves = 0;
+    for (; fluidSolves < 12 && (u - exact).norm() > 1e-10 * exact.norm(); ++fluidSolves)
+    {
+        const Eigen::VectorXd force = p.fluid(u);
+        model.addSample(u, force);
+        const Eigen::VectorXd output = p.solid(force);
+        model.setNewestResponse(output);
+        const auto columns = model.selectColumns(SecantFluidModel::Base::Newest);
+        const auto step = model.predict(
+            columns, [&](const Eigen::VectorXd& f) { return p.solid(f); },
+            SecantFluidModel::Base::Newest);
+        if (step)
+            modelSolidSolves += step->solidSolves;
+        u = step ? step->displacement : Eigen::VectorXd(0.5 * (u + output));
+    }
+    std::printf("secant coupling iterations: %d fluid solves, error %.1e\n", fluidSolves,
+                (u - exact).norm() / exact.norm());
+    EXPECT_LE(fluidSolves, 6);
+    EXPECT_LT((u - exact).norm(), 1e-10 * exact.norm());
+    EXPECT_EQ(modelSolidSolves, 0);
+    EXPECT_EQ(p.solves, fluidSolves);
+
+    // A new level (the solid's operator changed): the kept answers are forgotten, and a step
+    // then solves the solid once for the base and once per column.
+    model.acceptLevel();
+    model.clearResponses();
+    const auto columns = model.selectColumns();
+    ASSERT_FALSE(columns.empty());
+    const auto prediction =
+        model.predict(columns, [&](const Eigen::VectorXd& f) { return p.solid(f); });
+    ASSERT_TRUE(prediction.has_value());
+    EXPECT_EQ(prediction->solidSolves, 1 + static_cast<int>(columns.size()));
+}
+
+// Columns closer to the base than minColumnRms (|v|/sqrt(n)) are noise of the fluid's accuracy,
+// not directions: they are not selected.
+TEST(SecantFluidModel, ColumnsBelowTheNoiseFloorAreNotSelected)
+{
+    AffineProblem p;
+    SecantFluidModel model(4);
+    const Eigen::VectorXd u = Eigen::VectorXd::Random(kSize);
+    const Eigen::VectorXd far = u + 1e-3 * Eigen::VectorXd::Random(kSize);
+    const Eigen::VectorXd near = u + 1e-9 * Eigen::VectorXd::Random(kSize);
+    for (const Eigen::VectorXd* x : {&far, &near, &u})
+        model.addSample(*x, p.fluid(*x));
+    EXPECT_EQ(model.selectColumns(SecantFluidModel::Base::Newest).size(), 2u);
+    const auto kept = model.selectColumns(SecantFluidModel::Base::Newest, 1e-6);
+    ASSERT_EQ(kept.size(), 1u);
+    EXPECT_EQ(kept[0], 2); // far (samples are newest first: u, near, far)
 }

@@ -115,9 +115,10 @@ struct CoupledDriver::Impl
     // when unknown (before the level, after a restart from an older checkpoint).
     Eigen::VectorXd forceLast, forceBeforeLast;
     // The fluid's loads against its interface input over the last accepted levels (only with
-    // coupling.predictor secant; rank 0's column choice is broadcast).
-    SecantFluidModel secant;
-    bool secantSamples = params.predictor == "secant";
+    // coupling.predictor secant or coupling.secant.coupling_iterations; rank 0's column choice
+    // is broadcast).
+    SecantFluidModel secant{params.secant.maxColumns, params.secant.levels};
+    bool secantSamples = params.predictor == "secant" || params.secant.couplingIterations;
     double dtLast = 0.0;
     double lastFirstResidual = 0.0; // of the last accepted level [m] (0: none yet)
     mapping::Values nodalDisplacement, pointDisplacement, nodalForceRows; // rank 0 buffers
@@ -174,6 +175,9 @@ struct CoupledDriver::Impl
     LevelAttempt attemptLevel(LevelRecord& record, bool usePredictor);
     std::optional<LevelAttempt> predictFirstIterate(LevelRecord& record, bool usePredictor);
     std::optional<LevelAttempt> predictSecant(LevelRecord& record, bool twoLevels);
+    std::optional<SecantFluidModel::Prediction>
+    solveSecantModel(LevelRecord& record, SecantFluidModel::Base base, double minColumnRms);
+    std::optional<LevelAttempt> secantStep(LevelRecord& record, IterationLine& line);
     FluidAccuracy accuracyFor(int level, int iteration, double lastResidual,
                               bool interfaceConverged) const;
     FluidResponse solveFluid(const LevelRecord& record, int iteration,
@@ -399,6 +403,9 @@ FluidAccuracy CoupledDriver::Impl::accuracyFor(int level, int iteration, double 
 // structural solve. Leaves the solid with the level's last solve (accepted by the caller).
 LevelAttempt CoupledDriver::Impl::attemptLevel(LevelRecord& record, bool usePredictor)
 {
+    secant.clearResponses(); // the solid's operator of this attempt (dt) is a new one
+    // A retried level (a recovery cure) iterates with the accelerator alone.
+    const bool secantIterations = params.secant.couplingIterations && usePredictor;
     if (auto failed = predictFirstIterate(record, usePredictor))
         return *failed;
     accelerator->beginLevel();
@@ -427,13 +434,17 @@ LevelAttempt CoupledDriver::Impl::attemptLevel(LevelRecord& record, bool usePred
                         ": the structural Newton solve failed: " + report.message,
                     it};
         solverOutput = toVector(solid.wettedNodeDisplacements());
+        if (params.secant.couplingIterations)
+            secant.setNewestResponse(solverOutput);
         if (report.loadCuts > 0)
             line.note = "[cure] solid load sub-stepping x" + std::to_string(1 << report.loadCuts);
 
         auto outcome =
             judge(record, response, accuracy, it == 1 ? -1.0 : record.firstResidual, line);
-        log.iteration(line);
         broadcastOutcome(comm, outcome);
+        if (!outcome && secantIterations)
+            outcome = secantStep(record, line);
+        log.iteration(line);
         if (outcome)
             return {outcome->outcome, outcome->diagnosis, it};
         lastResidual = line.measure.rmsResidual;
@@ -484,11 +495,14 @@ std::optional<LevelAttempt> CoupledDriver::Impl::predictFirstIterate(LevelRecord
     return std::nullopt;
 }
 
-// coupling.predictor secant: the solid at the new time coupled to the secant model of the fluid
-// (SecantFluidModel.hpp); the linear extrapolation while the model has no column or is degenerate.
-std::optional<LevelAttempt> CoupledDriver::Impl::predictSecant(LevelRecord& record, bool twoLevels)
+// The solid at the level's time coupled to the secant model of the fluid expanded about `base`
+// (collective: rank 0's column choice is broadcast). nullopt when the model has no column or is
+// degenerate. Throws std::runtime_error when a solid solve fails.
+std::optional<SecantFluidModel::Prediction>
+CoupledDriver::Impl::solveSecantModel(LevelRecord& record, SecantFluidModel::Base base,
+                                      double minColumnRms)
 {
-    std::vector<int> columns = secant.selectColumns();
+    std::vector<int> columns = secant.selectColumns(base, minColumnRms);
     int count = static_cast<int>(columns.size());
     MPI_Bcast(&count, 1, MPI_INT, 0, comm);
     columns.resize(count);
@@ -503,23 +517,63 @@ std::optional<LevelAttempt> CoupledDriver::Impl::predictSecant(LevelRecord& reco
             throw std::runtime_error(report.message);
         return toVector(solid.wettedNodeDisplacements());
     };
+    struct AddTime
+    {
+        double& total;
+        Clock::time_point t0;
+        ~AddTime() { total += secondsSince(t0); }
+    } addTime{summary.solidSeconds, t0};
+    return secant.predict(columns, solveSolid, base);
+}
+
+// coupling.predictor secant: the solid at the new time coupled to the secant model of the fluid
+// (SecantFluidModel.hpp); the linear extrapolation while the model has no column or is degenerate.
+std::optional<LevelAttempt> CoupledDriver::Impl::predictSecant(LevelRecord& record, bool twoLevels)
+{
     std::optional<SecantFluidModel::Prediction> prediction;
     try
     {
-        prediction = secant.predict(columns, solveSolid);
+        prediction = solveSecantModel(record, SecantFluidModel::Base::Accepted, 0.0);
     }
     catch (const std::runtime_error& e)
     {
-        summary.solidSeconds += secondsSince(t0);
         return LevelAttempt{Outcome::SolidFailed,
                             std::string("the secant predictor's solid solve failed: ") + e.what(),
                             0};
     }
-    summary.solidSeconds += secondsSince(t0);
     if (prediction)
         iterate = prediction->displacement;
     else if (twoLevels)
         iterate = linearExtrapolation(uLast, uBeforeLast, record.dt / dtLast);
+    return std::nullopt;
+}
+
+// coupling.secant.coupling_iterations: the next iterate is the solid coupled to the secant model
+// expanded about this iteration's fluid solve (collective). Columns closer to the newest solve
+// than the convergence tolerance are noise of the fluid's accuracy and are not used. Without a
+// usable model the accelerator's iterate (judge()) stands.
+std::optional<LevelAttempt> CoupledDriver::Impl::secantStep(LevelRecord& record,
+                                                            IterationLine& line)
+{
+    std::optional<SecantFluidModel::Prediction> step;
+    try
+    {
+        step = solveSecantModel(record, SecantFluidModel::Base::Newest,
+                                params.convergence.absoluteTolerance);
+    }
+    catch (const std::runtime_error& e)
+    {
+        return LevelAttempt{Outcome::SolidFailed,
+                            std::string("the secant step's solid solve failed: ") + e.what()};
+    }
+    if (!step)
+        return std::nullopt;
+    iterate = step->displacement;
+    line.relaxation = std::nan("");
+    std::ostringstream note;
+    note << "secant step (" << step->columns << " columns, " << step->solidSolves
+         << " solid solves)";
+    line.note = note.str() + (line.note.empty() ? "" : "; " + line.note);
     return std::nullopt;
 }
 

@@ -84,7 +84,7 @@ CouplingParameters CouplingParameters::parse(const config::Block& b)
 {
     b.allowOnly({"launch", "max_iterations", "on_max_iterations", "divergence_factor", "predictor",
                  "convergence", "acceleration", "mapping", "time", "section_angle", "checkpoint",
-                 "recovery", "fluid_accuracy"});
+                 "recovery", "fluid_accuracy", "secant"});
     CouplingParameters p;
     if (auto l = b.optionalBlock("launch"))
     {
@@ -106,6 +106,17 @@ CouplingParameters CouplingParameters::parse(const config::Block& b)
     p.predictor =
         b.choice("predictor", {"constant", "linear", "structural", "structural-linear", "secant"},
                  p.predictor);
+    if (auto m = b.optionalBlock("secant"))
+    {
+        m->allowOnly({"max_columns", "levels", "coupling_iterations"});
+        p.secant.maxColumns = m->integer("max_columns", p.secant.maxColumns);
+        p.secant.levels = m->integer("levels", p.secant.levels);
+        p.secant.couplingIterations = m->flag("coupling_iterations", p.secant.couplingIterations);
+        if (p.secant.maxColumns < 1 || p.secant.maxColumns > 50)
+            m->fail("max_columns", "must be in [1, 50] (each column may cost a solid solve)");
+        if (p.secant.levels < 1 || p.secant.levels > 20)
+            m->fail("levels", "must be in [1, 20] (older levels whose fluid solves are kept)");
+    }
 
     auto c = b.block("convergence");
     c.allowOnly({"absolute_tolerance", "relative_tolerance"});
@@ -189,6 +200,8 @@ std::string CouplingParameters::echo() const
       << "  on_max_iterations: " << (continueOnMaxIterations ? "continue" : "stop") << "\n"
       << "  divergence_factor: " << divergenceFactor << "\n"
       << "  predictor: " << predictor << "\n"
+      << "  secant: {max_columns: " << secant.maxColumns << ", levels: " << secant.levels
+      << ", coupling_iterations: " << (secant.couplingIterations ? "true" : "false") << "}\n"
       << "  convergence: {absolute_tolerance: " << convergence.absoluteTolerance
       << ", relative_tolerance: " << convergence.relativeTolerance << "}\n"
       << "  acceleration:\n    type: " << acceleration.type() << "\n"

@@ -10,6 +10,7 @@
 #include "acceleration/Convergence.hpp"
 #include "driver/Checkpoint.hpp"
 #include "driver/FluidAccuracy.hpp"
+#include "driver/SecantFluidModel.hpp"
 #include "mapping/Mapping.hpp"
 #include "schedule/Planned.hpp"
 #include "schedule/Registry.hpp"
@@ -64,7 +65,8 @@ struct CouplingParameters
     int maxIterations = 30;               // per level
     bool continueOnMaxIterations = false; // false: a level that hits the cap stops the run
     double divergenceFactor = 1e3;        // stop when |r| grows past this x the level's first |r|
-    std::string predictor = "linear";     // first iterate of a level: constant | linear
+    std::string predictor = "linear";     // first iterate of a level: constant | linear | ...
+    SecantParameters secant;              // the secant model of the fluid (predictor secant)
     std::optional<FluidAccuracyParameters> fluidAccuracy; // absent: the fluid's own controls
     acceleration::ConvergenceParameters convergence;
     acceleration::AcceleratorParameters acceleration;

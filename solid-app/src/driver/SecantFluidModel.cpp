@@ -5,6 +5,7 @@
 
 #include <Eigen/Dense>
 
+#include <cmath>
 #include <stdexcept>
 
 namespace fsi::driver
@@ -28,7 +29,7 @@ void SecantFluidModel::addSample(const Eigen::VectorXd& u, const Eigen::VectorXd
 {
     if (u.size() != force.size() || (!samples_.empty() && u.size() != samples_[0].u.size()))
         throw std::logic_error("SecantFluidModel: interface vectors of different sizes");
-    samples_.push_front({u, force, currentLevel_, false});
+    samples_.push_front({u, force, currentLevel_, false, Eigen::VectorXd()});
 }
 
 void SecantFluidModel::acceptLevel()
@@ -39,6 +40,19 @@ void SecantFluidModel::acceptLevel()
     ++currentLevel_;
     while (!samples_.empty() && samples_.back().level < currentLevel_ - 1 - maxLevels_)
         samples_.pop_back();
+}
+
+void SecantFluidModel::setNewestResponse(const Eigen::VectorXd& displacement)
+{
+    if (samples_.empty() || displacement.size() != samples_[0].u.size())
+        throw std::logic_error("SecantFluidModel: a response needs its sample, of the same size");
+    samples_[0].response = displacement;
+}
+
+void SecantFluidModel::clearResponses()
+{
+    for (auto& s : samples_)
+        s.response.resize(0);
 }
 
 void SecantFluidModel::clear()
@@ -74,7 +88,7 @@ void SecantFluidModel::load(const State& state, int n)
     for (std::size_t i = 0; i < count; ++i, data += 2 * n)
         samples_.push_back({Eigen::Map<const Eigen::VectorXd>(data, n),
                             Eigen::Map<const Eigen::VectorXd>(data + n, n), state.meta[1 + 2 * i],
-                            state.meta[2 + 2 * i] != 0});
+                            state.meta[2 + 2 * i] != 0, Eigen::VectorXd()});
 }
 
 int SecantFluidModel::levels() const
@@ -85,27 +99,35 @@ int SecantFluidModel::levels() const
     return count;
 }
 
-int SecantFluidModel::base() const
+int SecantFluidModel::base(Base which) const
 {
+    if (which == Base::Newest)
+        return samples_.empty() ? -1 : 0;
     for (std::size_t i = 0; i < samples_.size(); ++i)
         if (samples_[i].accepted)
             return static_cast<int>(i);
     return -1;
 }
 
-std::vector<int> SecantFluidModel::candidates() const
+std::vector<int> SecantFluidModel::candidates(int base) const
 {
-    std::vector<int> accepted, others;
-    const int b = base();
-    for (int i = b + 1; i < static_cast<int>(samples_.size()); ++i)
-        (samples_[i].accepted ? accepted : others).push_back(i);
-    accepted.insert(accepted.end(), others.begin(), others.end());
-    return accepted;
+    std::vector<int> current, accepted, others;
+    for (int i = 0; i < static_cast<int>(samples_.size()); ++i)
+    {
+        if (i == base)
+            continue;
+        const Sample& s = samples_[i];
+        (s.level == currentLevel_ ? current : s.accepted ? accepted : others).push_back(i);
+    }
+    current.insert(current.end(), accepted.begin(), accepted.end());
+    current.insert(current.end(), others.begin(), others.end());
+    return current;
 }
 
-Eigen::MatrixXd SecantFluidModel::differences(const std::vector<int>& others, bool forces) const
+Eigen::MatrixXd SecantFluidModel::differences(int base, const std::vector<int>& others,
+                                              bool forces) const
 {
-    const auto& b = samples_[base()];
+    const auto& b = samples_[base];
     Eigen::MatrixXd d(b.u.size(), static_cast<Eigen::Index>(others.size()));
     for (std::size_t j = 0; j < others.size(); ++j)
         d.col(static_cast<Eigen::Index>(j)) =
@@ -114,14 +136,20 @@ Eigen::MatrixXd SecantFluidModel::differences(const std::vector<int>& others, bo
     return d;
 }
 
-std::vector<int> SecantFluidModel::selectColumns() const
+std::vector<int> SecantFluidModel::selectColumns(Base which, double minColumnRms) const
 {
-    if (base() < 0)
+    const int b = base(which);
+    if (b < 0)
         return {};
-    const std::vector<int> all = candidates();
+    std::vector<int> all;
+    const double n = static_cast<double>(samples_[b].u.size());
+    for (int i : candidates(b))
+        if ((samples_[b].u - samples_[i].u).norm() >= minColumnRms * std::sqrt(n) &&
+            (samples_[b].u - samples_[i].u).norm() > 0.0)
+            all.push_back(i);
     if (all.empty())
         return {};
-    const auto qr = acceleration::filteredQr(differences(all, false), kColumnFilter,
+    const auto qr = acceleration::filteredQr(differences(b, all, false), kColumnFilter,
                                              acceleration::QrFilterKind::Column);
     std::vector<int> kept;
     for (int i : qr.kept)
@@ -131,28 +159,45 @@ std::vector<int> SecantFluidModel::selectColumns() const
 }
 
 std::optional<SecantFluidModel::Prediction>
-SecantFluidModel::predict(const std::vector<int>& columns, const SolidSolve& solve) const
+SecantFluidModel::predict(const std::vector<int>& columns, const SolidSolve& solve, Base which)
 {
     const int k = static_cast<int>(columns.size());
     if (k == 0)
         return std::nullopt;
+    const int b = base(which);
     for (int j : columns)
-        if (j <= base() || j >= static_cast<int>(samples_.size()))
+        if (b < 0 || j == b || j < 0 || j >= static_cast<int>(samples_.size()))
             throw std::logic_error("SecantFluidModel: no such sample");
-    const Eigen::VectorXd& un = samples_[base()].u;
-    const Eigen::VectorXd& fn = samples_[base()].force;
-    const Eigen::MatrixXd w = differences(columns, true);
-    const auto qr = acceleration::filteredQr(differences(columns, false), 0.0,
+    const auto qr = acceleration::filteredQr(differences(b, columns, false), 0.0,
                                              acceleration::QrFilterKind::Column);
     if (static_cast<int>(qr.kept.size()) != k)
         return std::nullopt; // a zero column
     Prediction p;
     p.columns = k;
-    const Eigen::VectorXd b = solve(fn);
-    Eigen::MatrixXd z(un.size(), k);
-    for (int i = 0; i < k; ++i)
-        z.col(i) = solve(fn + w.col(i)) - b;
-    p.solidSolves = k + 1;
+    const Eigen::MatrixXd w = differences(b, columns, true);
+    // The solid is affine in its loads: for the column W_j = F_b - F_s,
+    // Z_j = S(F_b + W_j) - S(F_b) = S(F_b) - S(F_s). A sample whose answer is kept costs no solve;
+    // otherwise S(F_b + W_j) is solved (as the level predictor always did) and S(F_s) kept.
+    Sample& origin = samples_[b];
+    if (origin.response.size() == 0)
+    {
+        origin.response = solve(origin.force);
+        ++p.solidSolves;
+    }
+    const Eigen::VectorXd response = origin.response;
+    Eigen::MatrixXd z(response.size(), k);
+    for (int j = 0; j < k; ++j)
+    {
+        Sample& s = samples_[columns[j]];
+        if (s.response.size() == 0)
+        {
+            z.col(j) = solve(origin.force + w.col(j)) - response;
+            ++p.solidSolves;
+            s.response = response - z.col(j);
+        }
+        else
+            z.col(j) = response - s.response;
+    }
 
     // V^+ x = R^{-1} Q^T x.
     const auto pseudoInverse = [&](const Eigen::MatrixXd& x) -> Eigen::MatrixXd
@@ -161,10 +206,10 @@ SecantFluidModel::predict(const std::vector<int>& columns, const SolidSolve& sol
     const Eigen::FullPivLU<Eigen::MatrixXd> lu(a);
     if (!lu.isInvertible())
         return std::nullopt;
-    const Eigen::VectorXd c = lu.solve(pseudoInverse(b - un));
+    const Eigen::VectorXd c = lu.solve(pseudoInverse(response - samples_[b].u));
     if (!c.allFinite())
         return std::nullopt;
-    p.displacement = b + z * c;
+    p.displacement = response + z * c;
     return p;
 }
 

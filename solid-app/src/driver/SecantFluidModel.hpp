@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
 // A linear model of the fluid's answer to the interface shape, learnt from past fluid solves,
-// and the level predictor built on it (coupling.predictor: secant).
+// the level predictor built on it (coupling.predictor: secant) and the coupling iterations built
+// on it (coupling.secant.coupling_iterations: true).
 //
 // The quasi-steady loads depend on time only through the interface. Each fluid solve is a sample
 // (interface input u_s [m], nodal loads F_s [N]). The base is the last accepted level's final
@@ -33,6 +34,15 @@
 namespace fsi::driver
 {
 
+// `coupling.secant` (config/coupled.example.yaml): the model's memory, and whether the coupling
+// iterations use it.
+struct SecantParameters
+{
+    int maxColumns = 4;              // columns used at most (>= 1)
+    int levels = 3;                  // older levels whose solves are kept (>= 1)
+    bool couplingIterations = false; // every coupling iteration steps with the model
+};
+
 class SecantFluidModel
 {
 public:
@@ -40,9 +50,23 @@ public:
     // besides the last accepted one.
     explicit SecantFluidModel(int maxColumns = 4, int maxLevels = 3);
 
+    // The sample the model is expanded about: the last accepted level's final solve (the level
+    // predictor) or the newest solve (a coupling iteration).
+    enum class Base
+    {
+        Accepted,
+        Newest
+    };
+
     // Adds a fluid solve of the current level: its interface input u [m] and the nodal fluid
     // force F [N] it answered with (3 per wetted node, the same size every call).
     void addSample(const Eigen::VectorXd& u, const Eigen::VectorXd& force);
+    // The solid's interface displacement under the newest sample's force at the current level
+    // (the coupling iteration's solid output), kept for the model's steps. Pre: a sample exists.
+    void setNewestResponse(const Eigen::VectorXd& displacement);
+    // Forgets the solid's answers: call whenever the solid's operator changes (each attempt at a
+    // level, since a retried level may have another dt).
+    void clearResponses();
     // The current level was accepted on its last sample; older levels beyond maxLevels drop out.
     void acceptLevel();
     void clear();
@@ -69,19 +93,22 @@ public:
         int columns = 0;              // secant columns used
         int solidSolves = 0;
     };
-    // The older levels whose differences are usable columns (indices 1.. into the stored levels,
-    // newest first): nearly parallel steps are dropped. Empty when fewer than two levels are
-    // known. A distributed caller takes rank 0's choice, so that every rank solves equally often.
-    std::vector<int> selectColumns() const;
-    // Calls solve() 1 + columns.size() times (none when columns is empty). Returns nullopt when
-    // columns is empty or the model is degenerate (I - V^+ Z singular: the coupled model has no
-    // unique state, e.g. past static divergence).
-    std::optional<Prediction> predict(const std::vector<int>& columns,
-                                      const SolidSolve& solve) const;
+    // The samples whose differences to the base are usable columns (indices into the stored
+    // samples, newest first): nearly parallel ones (less than 5 % new direction) and those whose
+    // interface differs from the base's by less than minColumnRms [m] (|v|/sqrt(n): noise of the
+    // fluid's accuracy, not a direction) are dropped. Empty when there is no base or no other
+    // sample. A distributed caller takes rank 0's choice, so that every rank solves equally often.
+    std::vector<int> selectColumns(Base base = Base::Accepted, double minColumnRms = 0.0) const;
+    // The coupled state of the solid and the model. Calls solve() for the base and each column
+    // whose answer at this level is not known yet (at most 1 + columns.size() times; none when
+    // columns is empty). Returns nullopt when columns is empty or the model is degenerate
+    // (I - V^+ Z singular: the coupled model has no unique state, e.g. past static divergence).
+    std::optional<Prediction> predict(const std::vector<int>& columns, const SolidSolve& solve,
+                                      Base base = Base::Accepted);
 
 private:
-    int base() const; // index of the newest accepted sample (-1: none)
-    Eigen::MatrixXd differences(const std::vector<int>& others, bool forces) const;
+    int base(Base which) const; // index of the base sample (-1: none)
+    Eigen::MatrixXd differences(int base, const std::vector<int>& others, bool forces) const;
 
     int maxColumns_, maxLevels_;
     struct Sample
@@ -89,11 +116,14 @@ private:
         Eigen::VectorXd u, force;
         int level = 0;         // counts accepted levels
         bool accepted = false; // the level's accepted state
+        Eigen::VectorXd
+            response; // the solid's answer S(force) at the current level; empty: unknown
     };
     std::deque<Sample> samples_; // newest first
     int currentLevel_ = 0;
-    // candidate columns: indices into samples_ (accepted states first, newest first)
-    std::vector<int> candidates() const;
+    // candidate columns: indices into samples_ other than the base (the current level's solves,
+    // then accepted states, then the older levels' other solves; newest first within each)
+    std::vector<int> candidates(int base) const;
 };
 
 } // namespace fsi::driver
