@@ -221,7 +221,9 @@ void Foam::fluidSolidCoupling::answerSolve
     {
         Info<< "fsi: the driver sets the accuracy of every solve (coupling.fluid_accuracy);"
             << " fsiDict coupled.residualDrop and coupled.forceTolerance are not used,"
-            << " coupled.maxIterations " << own.maxIterations << " stays the cap" << endl;
+            << " coupled.maxIterations " << own.maxIterations << " stays the cap and"
+            << " coupled.stableIterations " << own.stableIterations << " the number of"
+            << " consecutive iterations the estimate must hold" << endl;
         accuracyAnnounced_ = true;
     }
     const SolveResult r = solve(c.accuracyGiven ? askedControls(own, c) : own);
@@ -315,6 +317,8 @@ Foam::fluidSolidCoupling::SolveControls Foam::fluidSolidCoupling::askedControls
     c.residualDrop = solve.residualDrop;
     c.residualRequired = solve.residualDrop > 0;
     c.estimateError = true;
+    // The fluid's own guard against a pause of an oscillating force (fsiDict coupled)
+    c.stableIterations = own.stableIterations;
     return c;
 }
 
