@@ -150,11 +150,15 @@ void Foam::fsiInverseDistanceMotionSolver::collectSources()
 {
     DynamicList<point> pts;
     DynamicList<scalar> areas;
-    for (const label patchi : patchIDs_)
+    onMovingPatch_.setSize(mesh().nPoints(), false);
+    normals0_.setSize(patchIDs_.size());
+    forAll(patchIDs_, k)
     {
-        const polyPatch& pp = mesh().boundaryMesh()[patchi];
+        const polyPatch& pp = mesh().boundaryMesh()[patchIDs_[k]];
         const labelList& meshPoints = pp.meshPoints();
+        UIndirectList<bool>(onMovingPatch_, meshPoints) = true;
         const pointField localPoints0(points0(), meshPoints);
+        normals0_[k] = pointNormals(pp.localFaces(), localPoints0);
         scalarField pointArea(meshPoints.size(), Zero);
         for (const face& f : pp.localFaces())
         {
@@ -189,8 +193,9 @@ void Foam::fsiInverseDistanceMotionSolver::gatherSourceMotions
 {
     DynamicList<vector> t;
     DynamicList<tensor> m;
-    for (const label patchi : patchIDs_)
+    forAll(patchIDs_, k)
     {
+        const label patchi = patchIDs_[k];
         const pointPatchVectorField& ppf = pointDisplacement_.boundaryField()[patchi];
         if (!isA<valuePointPatchVectorField>(ppf))
         {
@@ -203,7 +208,7 @@ void Foam::fsiInverseDistanceMotionSolver::gatherSourceMotions
         const polyPatch& pp = mesh().boundaryMesh()[patchi];
         const pointField p0(points0(), pp.meshPoints());
         const pointField p1(p0 + d);
-        const vectorField n0(pointNormals(pp.localFaces(), p0));
+        const vectorField& n0 = normals0_[k];
         const vectorField n1(pointNormals(pp.localFaces(), p1));
         const edgeList& edges = pp.edges();
         const labelListList& pointEdges = pp.pointEdges();
@@ -253,19 +258,13 @@ void Foam::fsiInverseDistanceMotionSolver::solve()
     // the affine part M_i (x - x_i) = M_i x - c_i
     const vectorField c(m & sourcePoints0_);
 
-    boolList onPatch(mesh().nPoints(), false);
-    for (const label patchi : patchIDs_)
-    {
-        UIndirectList<bool>(onPatch, mesh().boundaryMesh()[patchi].meshPoints()) = true;
-    }
-
     const pointField& x0 = points0();
     const scalar D2 = sqr(decayDistance_);
     const scalar L2 = sqr(affineDistance_);
     vectorField& d = pointDisplacement_.primitiveFieldRef();
     forAll(x0, pointi)
     {
-        if (onPatch[pointi])
+        if (onMovingPatch_[pointi])
         {
             continue;   // set by the patch's fixedValue below
         }

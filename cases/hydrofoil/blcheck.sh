@@ -1,0 +1,63 @@
+#!/bin/bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# Reproduces the boundary-layer mesh's figures of the README ("Boundary-layer fluid mesh") in one
+# invocation: meshes a preset with --fluid-mesh cgrid, checks the mesh motion at -12 deg tip
+# twist / 30 mm tip deflection (beam bending), solves the rigid foil (rigid.sh, SST upwind by
+# default) and prints one line with the cells, the motion check, the first-cell y+ and the loads:
+#
+#   cases/hydrofoil/blcheck.sh --out RUNDIR [--preset coarse|medium|fine] [--flow turbulent]
+#       [--scheme upwind] [--np 2] [--max-iterations 3000]
+#
+#   blcheck: preset=P cells=N motion=OK motion_max_nonorth_deg=X iterations=N converged=0|1
+#     yplus_max=X yplus_mean=X yplus_le1_pct=X tip_yplus_max=X lift_N=X drag_N=X
+#     root_moment_z_Nm=X cpu_s=X wall_s=X
+#
+# Exit 1 when the motion check fails or the first-cell y+ exceeds 1 anywhere on the foil (the
+# mesh's promise); the line is printed either way. Cost: coarse about 8 min on 2 cores (mesh
+# 1-2 min, motion 10 s, rigid solve ~6 min), medium ~25 min, fine more than an hour.
+# Needs what mesh.sh and rigid.sh need (OpenFOAM v1912, gmsh, the build's bin/ on PATH).
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+out="" preset=coarse flow=turbulent scheme=upwind np=2 maxIt=3000
+die() { echo "error: blcheck.sh: $*" >&2; exit 2; }
+while [ $# -gt 0 ]; do
+    case "$1" in
+        --out) out="$2"; shift 2 ;;
+        --preset) preset="$2"; shift 2 ;;
+        --flow) flow="$2"; shift 2 ;;
+        --scheme) scheme="$2"; shift 2 ;;
+        --np) np="$2"; shift 2 ;;
+        --max-iterations) maxIt="$2"; shift 2 ;;
+        -h|--help) sed -n '3,18p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        *) die "unknown option '$1' (see --help)" ;;
+    esac
+done
+[ -n "$out" ] || die "--out RUNDIR is required (a run folder outside git)"
+case "$preset" in coarse|medium|fine) ;; *) die "--preset must be coarse, medium or fine" ;; esac
+command -v fluid-app > /dev/null || die "fluid-app is not on PATH (put the build's bin/ first)"
+log() { echo "[blcheck.sh $(date +%H:%M:%S)] $*"; }
+mkdir -p "$out"; out="$(cd "$out" && pwd)"
+
+log "meshing ($preset, cgrid) into $out/mesh"
+"$here/mesh.sh" --out "$out/mesh" --preset "$preset" --fluid-mesh cgrid --np "$np" \
+    > "$out/log.mesh" 2>&1 || die "mesh.sh failed (see $out/log.mesh)"
+log "motion check: -12 deg tip twist, 30 mm tip deflection"
+motion=OK
+"$here/tools/motionCheck.sh" --mesh "$out/mesh/fluid" --out "$out/motion" --tip-twist-deg -12 \
+    --tip-deflection 0.030 --bending beam > "$out/log.motion" 2>&1 || motion=FAILED
+nonorth=$(awk '/non-orthogonality Max/ {print $4; exit}' "$out/motion/log.checkMesh" 2>/dev/null || true)
+log "rigid solve ($flow, $scheme)"
+"$here/rigid.sh" --mesh "$out/mesh/fluid" --out "$out/rigid" --flow "$flow" --scheme "$scheme" \
+    --np "$np" --max-iterations "$maxIt" > "$out/log.rigid" 2>&1 ||
+    die "rigid.sh failed (see $out/log.rigid)"
+/usr/bin/python3 - "$out/rigid/rigid.csv" "$preset" "$motion" "${nonorth:-nan}" <<'EOP'
+import csv, sys
+path, preset, motion, nonorth = sys.argv[1:5]
+row = next(csv.DictReader(open(path)))
+keys = ["iterations", "converged", "yplus_max", "yplus_mean", "yplus_le1_pct", "tip_yplus_max",
+        "lift_N", "drag_N", "root_moment_z_Nm", "cpu_s", "wall_s"]
+print(f"blcheck: preset={preset} cells={row['cells']} motion={motion} "
+      f"motion_max_nonorth_deg={nonorth} " + " ".join(f"{k}={row[k]}" for k in keys))
+ok = motion == "OK" and float(row["yplus_max"]) <= 1.0
+sys.exit(0 if ok else 1)
+EOP
