@@ -144,9 +144,11 @@ std::vector<int> SecantFluidModel::selectColumns(Base which, double minColumnRms
     std::vector<int> all;
     const double n = static_cast<double>(samples_[b].u.size());
     for (int i : candidates(b))
-        if ((samples_[b].u - samples_[i].u).norm() >= minColumnRms * std::sqrt(n) &&
-            (samples_[b].u - samples_[i].u).norm() > 0.0)
+    {
+        const double distance = (samples_[b].u - samples_[i].u).norm();
+        if (distance > 0.0 && distance >= minColumnRms * std::sqrt(n))
             all.push_back(i);
+    }
     if (all.empty())
         return {};
     const auto qr = acceleration::filteredQr(differences(b, all, false), kColumnFilter,

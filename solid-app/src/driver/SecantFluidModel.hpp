@@ -116,8 +116,8 @@ private:
         Eigen::VectorXd u, force;
         int level = 0;         // counts accepted levels
         bool accepted = false; // the level's accepted state
-        Eigen::VectorXd
-            response; // the solid's answer S(force) at the current level; empty: unknown
+        // the solid's answer S(force) at the current level [m]; empty: unknown
+        Eigen::VectorXd response;
     };
     std::deque<Sample> samples_; // newest first
     int currentLevel_ = 0;
