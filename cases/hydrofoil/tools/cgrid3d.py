@@ -53,16 +53,18 @@ HEIGHT = 0.114    # tunnel height (m): wall z = H, tip gap 14 mm
 # spanwise sizes) divided by it, every growth rate g replaced by 1 + (g - 1) / RATIO^level.
 # Plane (coarse): cells along each foil side, across a blunt trailing edge, along the wake and
 # from the foil to the tunnel boundary; first-cell height y1 (m; y+ <= 1 at 2 m/s needs
-# <= 5e-6 at the turbulent suction peak). Span: cell size at the root wall, growth and largest
-# size along the foil; next to the tip plane (on both sides) the cells are y1 thick, growing by
-# growth_gap; the size at the wall z = H is dz_top; largest size in the gap dz_max_gap. Above the
-# tip the plane's nodes within gap_relax_length of the foil re-space evenly within h_relax.
+# <= 5e-6 at the turbulent suction peak). Span: cell size at the root wall (dz_root), growth
+# and largest size along the foil (away from the foil the stations are even where the clustered
+# ones close in on the tip plane, spacing under dz_blend); next to the tip plane (on both sides)
+# the cells are y1 thick, growing by growth_gap; the size at the wall z = H is dz_top; largest
+# size in the gap dz_max_gap. Above the tip the plane's nodes within gap_relax_length of the foil
+# re-space evenly within h_relax.
 # Next to the tip plane: first cell y1_tip over the tip, and, within h_thin below it, the
 # sides' first cell thinned by tip_thinning (nodes within thin_length of the wall): without,
 # y+ reached 1.96 at the tip's leading-edge corner (SST, coarse; 0.76 elsewhere on the sides).
 RATIO = 1.3
 COARSE = dict(n_side=40, n_te=4, n_wake=16, n_normal=36, y1=5.0e-6,
-              dz_root=2.0e-3, growth_span=1.25, dz_max=4.5e-3,
+              dz_root=2.0e-3, dz_blend=2.0e-3, growth_span=1.25, dz_max=4.5e-3,
               dz_top=1.0e-3, growth_gap=1.4, dz_max_gap=2.5e-3,
               gap_relax_length=1.5e-3, h_relax=1.0e-3,
               y1_tip=3.5e-6, tip_thinning=0.35, thin_length=1.5e-3, h_thin=2.0e-3)
@@ -232,8 +234,8 @@ def spanStations(xyAll, quads, tri, loop, c):
     fineAbove = stations(SPAN, HEIGHT, c["y1_tip"], c["dz_top"], c["growth_gap"], c["growth_gap"],
                          c["dz_max_gap"])
     # away from the foil the stations below the tip are the clustered ones except where these
-    # close in on the tip plane (spacing under dz_root): there they are even
-    k = int(np.flatnonzero(np.diff(fineBelow) >= c["dz_root"])[-1])
+    # close in on the tip plane (spacing under dz_blend): there they are even
+    k = int(np.flatnonzero(np.diff(fineBelow) >= c["dz_blend"])[-1])
     evenBelow = np.concatenate([fineBelow[:k], np.linspace(fineBelow[k], SPAN, len(fineBelow) - k)])
     below = blend(w, fineBelow, evenBelow)
     above = blend(w, fineAbove, np.linspace(SPAN, HEIGHT, len(fineAbove)))
