@@ -13,8 +13,8 @@
 #     root_moment_z_Nm=X cpu_s=X wall_s=X
 #
 # Exit 1 when the motion check fails or the first-cell y+ exceeds 1 anywhere on the foil (the
-# mesh's promise); the line is printed either way. Cost: coarse about 8 min on 2 cores (mesh
-# 1-2 min, motion 10 s, rigid solve ~6 min), medium ~25 min, fine more than an hour.
+# mesh's promise); the line is printed either way. Cost: coarse about 9 min on 2 cores (mesh
+# 20 s, motion 30 s, rigid solve 8 min), medium ~25 min, fine more than an hour.
 # Needs what mesh.sh and rigid.sh need (OpenFOAM v1912, gmsh, the build's bin/ on PATH).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -39,7 +39,7 @@ log() { echo "[blcheck.sh $(date +%H:%M:%S)] $*"; }
 mkdir -p "$out"; out="$(cd "$out" && pwd)"
 
 log "meshing ($preset, cgrid) into $out/mesh"
-"$here/mesh.sh" --out "$out/mesh" --preset "$preset" --fluid-mesh cgrid --np "$np" \
+"$here/mesh.sh" --out "$out/mesh" --preset "$preset" --fluid-mesh cgrid --fluid-only --np "$np" \
     > "$out/log.mesh" 2>&1 || die "mesh.sh failed (see $out/log.mesh)"
 log "motion check: -12 deg tip twist, 30 mm tip deflection"
 motion=OK
