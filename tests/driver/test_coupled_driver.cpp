@@ -631,6 +631,19 @@ TEST(CoupledDriver, HistoryCarriesReactionAndStressProbes)
         EXPECT_TRUE(std::isfinite(v));
 }
 
+// The predictor tests' coupling: IQN-ILS to 1e-12 m over six levels whose steps grow from 0.1 to
+// 7 s (the viscoelastic solid's operator changes with dt).
+namespace
+{
+driver::CouplingParameters creepLevelsCoupling()
+{
+    auto coupling = couplingWith("iqn-ils", 0.5);
+    coupling.convergence.absoluteTolerance = 1e-12; // [m]; |u| ~ 1e-3 m
+    coupling.time = listOfTimes({0.0, 0.1, 0.4, 1.0, 3.0, 10.0});
+    return coupling;
+}
+} // namespace
+
 // The structural predictor solves the solid at the new time under the last level's loads: when
 // the loads do not depend on the interface (kappa = 0) that is the level's exact solution, so
 // every level is accepted at its first coupling iteration with a zero residual, while the linear
@@ -639,9 +652,7 @@ TEST(CoupledDriver, HistoryCarriesReactionAndStressProbes)
 TEST(CoupledDriver, StructuralPredictorIsExactUnderFrozenLoads)
 {
     const auto visco = viscoelastic({0.6, 0.4}, {0.3, 3.0});
-    auto coupling = couplingWith("iqn-ils", 0.5);
-    coupling.convergence.absoluteTolerance = 1e-12; // [m]; |u| ~ 1e-3 m
-    coupling.time = listOfTimes({0.0, 0.1, 0.4, 1.0, 3.0, 10.0});
+    auto coupling = creepLevelsCoupling();
     coupling.predictor = "linear";
     const auto linear = runCoupled(visco, coupling, F0, 0.0);
     coupling.predictor = "structural";
@@ -690,9 +701,7 @@ TEST(CoupledDriver, StructuralPredictorIsExactUnderFrozenLoads)
 TEST(CoupledDriver, SecantPredictorFollowsTheFluidsFeedback)
 {
     const auto visco = viscoelastic({0.6, 0.4}, {0.3, 3.0});
-    auto coupling = couplingWith("iqn-ils", 0.5);
-    coupling.convergence.absoluteTolerance = 1e-12; // [m]; |u| ~ 1e-3 m
-    coupling.time = listOfTimes({0.0, 0.1, 0.4, 1.0, 3.0, 10.0});
+    auto coupling = creepLevelsCoupling();
     const double kappa = 1.2 / meanTipResponse(elastic(K, G), F0);
     std::map<std::string, CoupledResult> runs;
     for (const char* predictor : {"linear", "structural", "secant"})
@@ -733,9 +742,7 @@ TEST(CoupledDriver, SecantPredictorFollowsTheFluidsFeedback)
 TEST(CoupledDriver, SecantCouplingIterationsNeedFewerIterationsThanIqnIls)
 {
     const auto visco = viscoelastic({0.6, 0.4}, {0.3, 3.0});
-    auto coupling = couplingWith("iqn-ils", 0.5);
-    coupling.convergence.absoluteTolerance = 1e-12; // [m]; |u| ~ 1e-3 m
-    coupling.time = listOfTimes({0.0, 0.1, 0.4, 1.0, 3.0, 10.0});
+    auto coupling = creepLevelsCoupling();
     coupling.predictor = "secant";
     const double kappa = 1.2 / meanTipResponse(elastic(K, G), F0);
     const auto iqn = runCoupled(visco, coupling, F0, kappa);
