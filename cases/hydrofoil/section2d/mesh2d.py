@@ -64,9 +64,16 @@ def parseArgs(argv):
     p.add_argument("--meanline", default="a08", choices=["a08", "a08mod"])
     p.add_argument("--te", default="blunt", choices=["blunt", "sharp"],
                    help="trailing edge: blunt (the section's 0.4 mm face) or sharp (closed)")
+    p.add_argument("--level-along", type=int, default=None,
+                   help="refinement level of the counts along the foil and the wake (n_side, "
+                        "n_te, n_wake) alone; default --level (separate-refinement studies)")
+    p.add_argument("--level-across", type=int, default=None,
+                   help="refinement level across the layers (n_normal, y1) alone; default --level")
     a = p.parse_args(argv)
-    if not 0 <= a.level <= 6:
-        p.error("--level must be 0..6")
+    for name in ("level", "level_along", "level_across"):
+        v = getattr(a, name)
+        if v is not None and not 0 <= v <= 6:
+            p.error("--%s must be 0..6" % name.replace("_", "-"))
     return a
 
 
@@ -121,13 +128,16 @@ def normals(poly):
     return np.column_stack([t[:, 1], -t[:, 0]])
 
 
-def build(level, tc, cli, meanline, te="blunt", counts=None):
+def build(level, tc, cli, meanline, te="blunt", counts=None, levelAlong=None, levelAcross=None):
     """The C-grid of refinement level `level`; `counts` (a dict with n_side, n_te, n_wake,
-    n_normal, y1) replaces the level's cell counts and first-cell height (the 3-D mesher)."""
-    k = RATIO ** level
-    nSide, nTe = round(N_SIDE_0 * k), 2 * round(N_TE_0 * k / 2)
-    nWake, nNormal = round(N_WAKE_0 * k), round(N_NORMAL_0 * k)
-    y1 = Y1_0 / k
+    n_normal, y1) replaces the level's cell counts and first-cell height (the 3-D mesher).
+    levelAlong / levelAcross (default `level`) refine the counts along the foil and wake
+    (n_side, n_te, n_wake) and across the layers (n_normal, y1) separately."""
+    kAlong = RATIO ** (level if levelAlong is None else levelAlong)
+    kAcross = RATIO ** (level if levelAcross is None else levelAcross)
+    nSide, nTe = round(N_SIDE_0 * kAlong), 2 * round(N_TE_0 * kAlong / 2)
+    nWake, nNormal = round(N_WAKE_0 * kAlong), round(N_NORMAL_0 * kAcross)
+    y1 = Y1_0 / kAcross
     if counts is not None:
         nSide, nTe, nWake = counts["n_side"], 2 * round(counts["n_te"] / 2), counts["n_wake"]
         nNormal, y1 = counts["n_normal"], counts["y1"]
@@ -350,7 +360,8 @@ def writeMsh(path, xy, cells, edges):
 
 def main(argv=None):
     a = parseArgs(argv)
-    g = build(a.level, a.tc, a.cli, a.meanline, a.te)
+    g = build(a.level, a.tc, a.cli, a.meanline, a.te, levelAlong=a.level_along,
+              levelAcross=a.level_across)
     xy, cells, edges, area = quads(g)
     os.makedirs(a.out, exist_ok=True)
     writeMsh(os.path.join(a.out, "section2d.msh"), xy, cells, edges)

@@ -9,6 +9,9 @@
 #       [--tc 0.12] [--cli 0.5] [--tu 0.01] [--length-scale 0.001] [--init-from RUN]
 #
 #   --level K         mesh level (0 coarsest; every level refines all lengths by sqrt 2)
+#   --level-along K, --level-across K  refine along the foil and the wake (n_side, n_te,
+#                     n_wake) or across the layers (n_normal, first-cell height) alone to
+#                     level K (default --level): separate-refinement studies
 #   --tolerance T     stop when the estimated force error left is below T |F| for 100
 #                     consecutive iterations (fsiDict rigid.estimateForceError,
 #                     stableIterations; residuals are not required)
@@ -32,12 +35,15 @@
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 out="" level=0 flow=laminar scheme=linearUpwind tol=1e-6 maxIt=6000 meshOnly=0 tc=0.12 cli=0.5 te=blunt
-tu="" lscale="" initFrom=""
+tu="" lscale="" initFrom="" levelArgs=()
 die() { echo "error: section2d/run2d.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
     case "$1" in
         --out) out="$2"; shift 2 ;;
         --level) level="$2"; shift 2 ;;
+        --level-along|--level-across)
+            [[ "${2:-}" =~ ^[0-6]$ ]] || die "$1 '${2:-}' must be 0..6"
+            levelArgs+=("$1" "$2"); shift 2 ;;
         --flow) flow="$2"; shift 2 ;;
         --scheme) scheme="$2"; shift 2 ;;
         --tolerance) tol="$2"; shift 2 ;;
@@ -49,7 +55,7 @@ while [ $# -gt 0 ]; do
         --tu) tu="$2"; shift 2 ;;
         --length-scale) lscale="$2"; shift 2 ;;
         --init-from) initFrom="$2"; shift 2 ;;
-        -h|--help) sed -n '3,31p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        -h|--help) sed -n '3,34p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) die "unknown option '$1' (see --help)" ;;
     esac
 done
@@ -73,7 +79,7 @@ log() { echo "[section2d $(date +%H:%M:%S)] $*"; }
 # ---- mesh: structured C-grid (mesh2d.py, Gmsh MSH 2.2) -> gmshToFoam ----------------------------
 mesh="$out/mesh"
 rm -rf "$mesh" "$out/case" "$out/section2d.csv"; mkdir -p "$mesh"
-"$py" "$here/mesh2d.py" --level "$level" --out "$mesh" --tc "$tc" --cli "$cli" --te "$te" > "$mesh/log.mesh2d" 2>&1 \
+"$py" "$here/mesh2d.py" --level "$level" --out "$mesh" --tc "$tc" --cli "$cli" --te "$te" ${levelArgs[@]+"${levelArgs[@]}"} > "$mesh/log.mesh2d" 2>&1 \
     || { cat "$mesh/log.mesh2d"; die "mesh2d.py failed"; }
 case="$out/case"
 mkdir -p "$case"
