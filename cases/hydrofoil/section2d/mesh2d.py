@@ -53,6 +53,16 @@ X_SPLIT = X_LE + 0.3 * CHORD  # foil lines behind this x run straight to the sid
 NORMAL_SMOOTHING = 0.004 * CHORD  # Gaussian width of the normal smoothing (m)
 TE_BLEND = 0.15 * CHORD # foil lines turn to the wall normal over this length before the TE
 WAKE_RAMP = 0.356        # the first-cell height at the wake cut grows from y1 over this length
+# Trailing-edge spacing along the foil, in L/n (L the side's arc length, n its cells). The
+# sharp trailing edge sets the circulation: at 0.57 (0.1 + 0.15 pi, the 3-D meshes' value) the section's C_L
+# rose 4 % when only the foil stations were doubled, at 0.1 by 0.4 % (cases/hydrofoil/README.md,
+# "2-D section mode"). 0.1 equals the leading edge's spacing.
+TE_SPACING = 0.1
+# The rear lines' outer ends: a fraction OUTER_BLEND of their x is evenly spaced (by index)
+# between the first rear line and the outlet, the rest is the x where their straight part ends;
+# keeps the cells at the side wall behind a finely spaced trailing edge from aspect ratios
+# beyond checkMesh's 1 000.
+OUTER_BLEND = 0.5
 
 
 def parseArgs(argv):
@@ -112,13 +122,17 @@ def resample(poly, t):
     return np.column_stack([np.interp(u, s, poly[:, 0]), np.interp(u, s, poly[:, 1])])
 
 
-def clustered(n):
-    """n + 1 fractions 0..1 from the leading edge (t = 0) to the trailing edge: strongly
-    clustered at the leading edge (spacing 0.1 L/n), moderately at the trailing edge (0.57 L/n)
-    f = 0.1 t + 0.6 (1 - cos(pi t))/2 + 0.3 (1 - cos(pi t / 2))."""
+def clustered(n, teSpacing=TE_SPACING):
+    """n + 1 fractions 0..1 from the leading edge (t = 0) to the trailing edge, clustered at the
+    leading edge (spacing 0.1 L/n) and at the trailing edge (spacing teSpacing L/n, 0.1..1.5):
+    f = 0.1 t + a (1 - cos(pi t))/2 + b (1 - cos(pi t / 2)), b = 2 (teSpacing - 0.1)/pi,
+    a = 0.9 - b."""
+    if not 0.1 <= teSpacing <= 1.5:
+        raise ValueError("mesh2d: trailing-edge spacing %g L/n outside 0.1..1.5" % teSpacing)
+    b = 2.0 * (teSpacing - 0.1) / math.pi
     t = np.linspace(0.0, 1.0, n + 1)
-    return (0.1 * t + 0.6 * 0.5 * (1.0 - np.cos(math.pi * t))
-            + 0.3 * (1.0 - np.cos(0.5 * math.pi * t)))
+    return (0.1 * t + (0.9 - b) * 0.5 * (1.0 - np.cos(math.pi * t))
+            + b * (1.0 - np.cos(0.5 * math.pi * t)))
 
 
 def normals(poly):
@@ -128,11 +142,13 @@ def normals(poly):
     return np.column_stack([t[:, 1], -t[:, 0]])
 
 
-def build(level, tc, cli, meanline, te="blunt", counts=None, levelAlong=None, levelAcross=None):
+def build(level, tc, cli, meanline, te="blunt", counts=None, levelAlong=None, levelAcross=None,
+          teSpacing=TE_SPACING, outerBlend=OUTER_BLEND):
     """The C-grid of refinement level `level`; `counts` (a dict with n_side, n_te, n_wake,
     n_normal, y1) replaces the level's cell counts and first-cell height (the 3-D mesher).
     levelAlong / levelAcross (default `level`) refine the counts along the foil and wake
-    (n_side, n_te, n_wake) and across the layers (n_normal, y1) separately."""
+    (n_side, n_te, n_wake) and across the layers (n_normal, y1) separately. teSpacing,
+    outerBlend: see TE_SPACING, OUTER_BLEND (the 3-D mesher keeps 0.57 and 0)."""
     kAlong = RATIO ** (level if levelAlong is None else levelAlong)
     kAcross = RATIO ** (level if levelAcross is None else levelAcross)
     nSide, nTe = round(N_SIDE_0 * kAlong), 2 * round(N_TE_0 * kAlong / 2)
@@ -153,7 +169,7 @@ def build(level, tc, cli, meanline, te="blunt", counts=None, levelAlong=None, le
         for side in (suction, pressure):
             side += np.outer((side[:, 0] - X_LE) / CHORD, mid - side[-1])
         suction[-1] = pressure[-1] = mid
-    t = clustered(nSide)
+    t = clustered(nSide, teSpacing)
     sideA = resample(suction, t)[::-1]   # suction side, trailing edge -> leading edge
     sideB = resample(pressure, t)[1:]    # pressure side, after the leading edge -> TE
     foil = np.vstack([sideA, sideB])     # corner A ... LE ... corner B
@@ -212,6 +228,10 @@ def build(level, tc, cli, meanline, te="blunt", counts=None, levelAlong=None, le
             rear[-1] = False                    # the leading edge itself
         x = inner[idx, 0] + STRAIGHT * m[idx, 0]   # where the straight part ends
         tgt = np.column_stack([x, np.full(len(idx), sign * TUNNEL_W / 2)])
+        rearIdx = np.flatnonzero(rear)
+        if outerBlend > 0 and len(rearIdx) > 1:
+            even = np.linspace(x[rearIdx[0]], x[rearIdx[-1]], len(rearIdx))
+            tgt[rearIdx, 0] = (1.0 - outerBlend) * x[rearIdx] + outerBlend * even
         front = np.flatnonzero(~rear)
         # path from the wall at X_SPLIT to the inlet centre (index order of this half)
         path = np.array([[X_SPLIT, sign * TUNNEL_W / 2], [0.0, sign * TUNNEL_W / 2], [0.0, 0.0]])

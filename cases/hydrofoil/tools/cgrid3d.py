@@ -34,6 +34,7 @@ Writes DIR/cgrid3d.msh and DIR/cgrid3d-mesh.txt (the parameters and counts, one 
 Needs the `gmsh` binary (the triangulation of the section above the tip) and numpy.
 """
 import argparse
+import math
 import os
 import subprocess
 import sys
@@ -200,7 +201,8 @@ def signedArea(pts, cells):
 
 def build(name, tc, cli, meanline, te, workdir, fullSpan=False):
     c = preset(name)
-    g = mesh2d.build(0, tc, cli, meanline, te, counts=c)
+    g = mesh2d.build(0, tc, cli, meanline, te, counts=c, teSpacing=0.1 + 0.15 * math.pi,
+                     outerBlend=0.0)
     xy, quads, edges, _ = mesh2d.quads(g)
     loop = foilLoop(edges["foil"])
     if fullSpan:   # diagnostic: no tip; the foil's sides reach the wall z = H
