@@ -54,10 +54,12 @@ NORMAL_SMOOTHING = 0.004 * CHORD  # Gaussian width of the normal smoothing (m)
 TE_BLEND = 0.15 * CHORD # foil lines turn to the wall normal over this length before the TE
 WAKE_RAMP = 0.356        # the first-cell height at the wake cut grows from y1 over this length
 # Trailing-edge spacing along the foil, in L/n (L the side's arc length, n its cells). The
-# sharp trailing edge sets the circulation: at 0.57 (0.1 + 0.15 pi, the 3-D meshes' value) the section's C_L
-# rose 4 % when only the foil stations were doubled, at 0.1 by 0.4 % (cases/hydrofoil/README.md,
-# "2-D section mode"). 0.1 equals the leading edge's spacing.
-TE_SPACING = 0.1
+# sharp trailing edge sets the circulation: at 0.57 (0.1 + 0.15 pi, the 3-D meshes' value) the
+# section's C_L rose 4 % when only the foil stations were doubled, and the level study showed
+# order 0.3. At 0.2 the turbulent C_L converges monotonically with order 1.6 (levels 0-3,
+# verification/hydrofoil-2d); at 0.1 levels 1-3 agree to 0.04 %, but level 0 does not settle
+# (cases/hydrofoil/README.md, "2-D section mode"). 0.1 would equal the leading edge's spacing.
+TE_SPACING = 0.2
 # The rear lines' outer ends: a fraction OUTER_BLEND of their x is evenly spaced (by index)
 # between the first rear line and the outlet, the rest is the x where their straight part ends;
 # keeps the cells at the side wall behind a finely spaced trailing edge from aspect ratios

@@ -75,6 +75,25 @@ class Section2dMeshTest(unittest.TestCase):
             for coarse, fine in ((n0, n1), (n1, n2)):
                 self.assertAlmostEqual(fine / coarse, 2.0, delta=0.03)
 
+    def test_station_spacing_at_the_edges(self):
+        # f'(0) = 0.1 and f'(1) = teSpacing exactly (spacings in L/n). The end intervals times
+        # n are f' + f''/(2n) + O(1/n^2); Richardson over n and 2n leaves O(1/n^2): 1e-4 at
+        # n = 400.
+        n = 400
+
+        def ends(m, te):
+            f = mesh2d.clustered(m, te)
+            self.assertEqual(f[0], 0.0)
+            self.assertAlmostEqual(f[-1], 1.0, delta=1e-14)
+            self.assertTrue(np.all(np.diff(f) > 0))
+            return (f[1] - f[0]) * m, (f[-1] - f[-2]) * m
+
+        for te in (0.1, mesh2d.TE_SPACING, 0.1 + 0.15 * math.pi, 1.5):
+            (le1, te1), (le2, te2) = ends(n, te), ends(2 * n, te)
+            self.assertAlmostEqual(2 * le2 - le1, 0.1, delta=1e-4)
+            self.assertAlmostEqual(2 * te2 - te1, te, delta=1e-4)
+        with self.assertRaises(ValueError):
+            mesh2d.clustered(n, 0.05)
 
 if __name__ == "__main__":
     unittest.main()
