@@ -97,6 +97,10 @@ if [ "$doFluid" = 1 ]; then
             --cli "$cli" --meanline "$meanline" --te "$te" | tee -a "$summary"
         ( cd "$case"
           gmshToFoam cgrid/cgrid3d.msh > log.gmshToFoam 2>&1 || { tail -20 log.gmshToFoam; exit 1; }
+          # every boundary face belongs to a named patch; gmshToFoam collects the others (e.g.
+          # unmatched faces between two cells) in defaultFaces
+          ! grep -q defaultFaces constant/polyMesh/boundary ||
+              { echo "error: mesh.sh: $case/constant/polyMesh/boundary has a defaultFaces patch (boundary faces cgrid3d.py did not name: unmatched cell faces); the mesh is unusable, please report it with $case/cgrid/cgrid3d-mesh.txt" >&2; exit 1; }
           /usr/bin/python3 "$here/tools/patchTypes.py" constant/polyMesh/boundary \
               inlet:patch outlet:patch walls:wall foil:wall )
         rm -f "$case/cgrid/cgrid3d.msh"

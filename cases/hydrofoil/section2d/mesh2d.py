@@ -54,11 +54,12 @@ NORMAL_SMOOTHING = 0.004 * CHORD  # Gaussian width of the normal smoothing (m)
 TE_BLEND = 0.15 * CHORD # foil lines turn to the wall normal over this length before the TE
 WAKE_RAMP = 0.356        # the first-cell height at the wake cut grows from y1 over this length
 # Trailing-edge spacing along the foil, in L/n (L the side's arc length, n its cells). The
-# sharp trailing edge sets the circulation: at 0.57 (0.1 + 0.15 pi, the 3-D meshes' value) the
-# section's C_L rose 4 % when only the foil stations were doubled, and the level study showed
-# order 0.3. At 0.2 the turbulent C_L converges monotonically with order 1.6 (levels 0-3,
-# verification/hydrofoil-2d); at 0.1 levels 1-3 agree to 0.04 %, but level 0 does not settle
-# (cases/hydrofoil/README.md, "2-D section mode"). 0.1 would equal the leading edge's spacing.
+# sharp trailing edge sets the circulation: at 0.57 (0.1 + 0.15 pi, the first meshes' value)
+# the section's C_L rose 4 % when only the foil stations were doubled, and the level study
+# showed order 0.3. At 0.2 the turbulent C_L converges monotonically with order 1.6 (levels
+# 0-1-2, verification/hydrofoil-2d); at 0.1 levels 1-3 agree to 0.04 %, but level 0 does not
+# settle (cases/hydrofoil/README.md, "2-D section mode"). 0.1 would equal the leading edge's
+# spacing. The 3-D C-grid (tools/cgrid3d.py) uses the same value.
 TE_SPACING = 0.2
 # The rear lines' outer ends: a fraction OUTER_BLEND of their x is evenly spaced (by index)
 # between the first rear line and the outlet, the rest is the x where their straight part ends;
@@ -150,7 +151,7 @@ def build(level, tc, cli, meanline, te="blunt", counts=None, levelAlong=None, le
     n_normal, y1) replaces the level's cell counts and first-cell height (the 3-D mesher).
     levelAlong / levelAcross (default `level`) refine the counts along the foil and wake
     (n_side, n_te, n_wake) and across the layers (n_normal, y1) separately. teSpacing,
-    outerBlend: see TE_SPACING, OUTER_BLEND (the 3-D mesher keeps 0.57 and 0)."""
+    outerBlend: see TE_SPACING, OUTER_BLEND."""
     kAlong = RATIO ** (level if levelAlong is None else levelAlong)
     kAcross = RATIO ** (level if levelAcross is None else levelAcross)
     nSide, nTe = round(N_SIDE_0 * kAlong), 2 * round(N_TE_0 * kAlong / 2)

@@ -34,7 +34,6 @@ Writes DIR/cgrid3d.msh and DIR/cgrid3d-mesh.txt (the parameters and counts, one 
 Needs the `gmsh` binary (the triangulation of the section above the tip) and numpy.
 """
 import argparse
-import math
 import os
 import subprocess
 import sys
@@ -179,17 +178,24 @@ def triangulateSection(xy, loop, workdir):
         t = ln.split()
         if t[1] == "2":
             tris.append([int(v) for v in t[3 + int(t[2]):]])
-    # gmsh node -> plane node (loop points, by coordinates) or a new interior point
-    key = {(round(x, 12), round(y, 12)): int(v) for v, (x, y) in zip(loop, p)}
+    # gmsh node -> plane node (the nearest loop point, when closer than a millionth of the
+    # shortest segment: gmsh's coordinates may differ from the .geo's in the last bits, so
+    # rounding both to a grid can split a pair) or a new interior point
+    tol = 1e-6 * seg.min()
     ids, extra = {}, []
     for tag, (x, y) in nodes.items():
-        k = key.get((round(x, 12), round(y, 12)))
-        if k is None:
+        dist = np.hypot(p[:, 0] - x, p[:, 1] - y)
+        k = int(np.argmin(dist))
+        if dist[k] < tol:
+            ids[tag] = int(loop[k])
+        else:
             ids[tag] = len(xy) + len(extra)
             extra.append((x, y))
-        else:
-            ids[tag] = k
     tri = np.array([[ids[v] for v in t] for t in tris])
+    missing = set(int(v) for v in loop) - set(tri.ravel().tolist())
+    if missing:   # the prisms above the tip would not match the hexahedra around them
+        sys.exit("cgrid3d: the section's triangulation misses %d of its %d boundary nodes"
+                 % (len(missing), n))
     return np.array(extra).reshape(-1, 2), tri
 
 
@@ -201,8 +207,7 @@ def signedArea(pts, cells):
 
 def build(name, tc, cli, meanline, te, workdir, fullSpan=False):
     c = preset(name)
-    g = mesh2d.build(0, tc, cli, meanline, te, counts=c, teSpacing=0.1 + 0.15 * math.pi,
-                     outerBlend=0.0)
+    g = mesh2d.build(0, tc, cli, meanline, te, counts=c)  # mesh2d's TE_SPACING, OUTER_BLEND
     xy, quads, edges, _ = mesh2d.quads(g)
     loop = foilLoop(edges["foil"])
     if fullSpan:   # diagnostic: no tip; the foil's sides reach the wall z = H
