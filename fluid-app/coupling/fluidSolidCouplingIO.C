@@ -79,6 +79,30 @@ void Foam::fluidSolidCoupling::logAccepted(const fsi::fluid::Command& accept) co
 }
 
 
+void Foam::fluidSolidCoupling::recordIteration
+(
+    const label iteration,
+    const vector& force,
+    const scalar residualU,
+    const scalar residualP
+)
+{
+    if (!recordIterations_ || !Pstream::master())
+    {
+        return;
+    }
+    if (!iterationLog_.valid())
+    {
+        mkDir(logDir());
+        iterationLog_.reset(new OFstream(logDir()/"rigidIterations.csv"));
+        iterationLog_().precision(12);
+        iterationLog_() << "iteration,Fx,Fy,Fz,residualU,residualP" << nl;
+    }
+    iterationLog_() << iteration << ',' << force.x() << ',' << force.y() << ',' << force.z()
+        << ',' << residualU << ',' << residualP << nl;
+}
+
+
 void Foam::fluidSolidCoupling::writeRigidForces
 (
     const SolveResult& r,

@@ -185,6 +185,16 @@ def t_force_consistency(a):
     # the per-face CSV (interface patch 'beam', global order) sums to the same total as the log
     rows = read_csv(os.path.join(d, "postProcessing", "fsi", "interfaceForces_rigid.csv"))
     fsum = [sum(r[c] for r in rows) for c in (1, 2, 3)]
+    # rigidIterations.csv: one row per SIMPLE iteration (1..N, N from the log); the last row's
+    # interface force is the final one (the same fields: equal to round-off)
+    hist = read_csv(os.path.join(d, "postProcessing", "fsi", "rigidIterations.csv"))
+    n = re.findall(r"fsi: rigid solve: (\d+) SIMPLE iterations", log)
+    check(bool(n) and [int(r[0]) for r in hist] == list(range(1, int(n[-1]) + 1)),
+          "rigidIterations.csv has one row per SIMPLE iteration (%d rows, log %s)" % (len(hist), n[-1] if n else "?"))
+    last = hist[-1][1:4]
+    relLast = math.sqrt(sum((x - y) ** 2 for x, y in zip(last, fsum))) / math.sqrt(sum(y * y for y in fsum))
+    check(relLast <= 1e-10,
+          "last row of rigidIterations.csv vs sum of interfaceForces_rigid.csv: rel. diff %.3e <= 1e-10" % relLast)
     # compare with the forces function object on 'beam' alone: rerun the check via the log of a beam-only run
     d2 = prepare(a, "force-consistency-beam", extra_fsi="forcePatches (beam);")
     rc2, log2 = run([a.fluid_app, "-rigid", "-case", d2], os.path.join(d2, "log.fluid-app"))

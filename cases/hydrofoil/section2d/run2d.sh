@@ -30,8 +30,10 @@
 # from which the suction and the pressure side boundary layers are turbulent,
 # turb_from_suction, turb_from_pressure, and the x/c from which the flow at the wall is
 # reversed (separated), sep_suction, sep_pressure: blstate.py, whose per-face skin friction
-# and nu_t/nu are in DIR/boundary-layer.csv). fluid-app must be on PATH (scripts/run and scripts/verify put
-# build/bin there).
+# and nu_t/nu are in DIR/boundary-layer.csv). A solve that did not converge also prints
+# fluid-app's own C_L band over its last SIMPLE_WINDOW iterations (from its
+# postProcessing/fsi/rigidIterations.csv). fluid-app must be on PATH (scripts/run and
+# scripts/verify put build/bin there).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 out="" level=0 flow=laminar scheme=linearUpwind tol=1e-6 maxIt=6000 meshOnly=0 tc=0.12 cli=0.5 te=blunt
@@ -55,7 +57,7 @@ while [ $# -gt 0 ]; do
         --tu) tu="$2"; shift 2 ;;
         --length-scale) lscale="$2"; shift 2 ;;
         --init-from) initFrom="$2"; shift 2 ;;
-        -h|--help) sed -n '3,34p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        -h|--help) sed -n '3,36p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) die "unknown option '$1' (see --help)" ;;
     esac
 done
@@ -228,6 +230,14 @@ r = dict(level=level, cells=cells, flow=flow, scheme=scheme,
          cl_min=clMin, cl_max=clMax, turb_from_suction=float(onSuction),
          sep_suction=float(sepSuction), turb_from_pressure=float(onPressure),
          sep_pressure=float(sepPressure))
+# the solver's own force history (fluid-app's rigidIterations.csv): its C_L band over the
+# last SIMPLE_WINDOW iterations of a solve that reached the cap, beside the simpleFoam window's
+hist = os.path.join(case, "postProcessing/fsi/rigidIterations.csv")
+if row["converged"] != "1" and os.path.exists(hist):
+    fyOwn = [float(h["Fy"]) for h in csv.DictReader(open(hist))][-int(os.environ.get("SIMPLE_WINDOW", "300")):]
+    if len(fyOwn) > 1:
+        print("section2d: fluid-app's own C_L over its last %d iterations: %.6g .. %.6g"
+              % (len(fyOwn), -max(fyOwn) / (q * c * dz), -min(fyOwn) / (q * c * dz)))
 with open(outCsv, "w") as f:
     f.write(",".join(r) + "\n")
     f.write(",".join(("%.8g" % v) if isinstance(v, float) else str(v) for v in r.values()) + "\n")
