@@ -352,10 +352,9 @@ int Foam::fluidSolidCoupling::run
 int Foam::fluidSolidCoupling::runRigid(const SteadySolver& solve)
 {
     Info<< "fsi: rigid mode (no coupling): steady solve to convergence" << nl << endl;
-    recordIterations_ = true;
+    openIterationLog();
     const SolveResult r = solve(controls("rigid"));
-    recordIterations_ = false;
-    iterationLog_.clear();   // closes rigidIterations.csv
+    closeIterationLog();
     checkDiverged(r);
     Info<< "fsi: rigid solve: " << r.iterations << " SIMPLE iterations, residuals U "
         << r.residualU << " p " << r.residualP

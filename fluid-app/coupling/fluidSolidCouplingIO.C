@@ -79,6 +79,26 @@ void Foam::fluidSolidCoupling::logAccepted(const fsi::fluid::Command& accept) co
 }
 
 
+void Foam::fluidSolidCoupling::openIterationLog()
+{
+    recordIterations_ = true;
+    if (Pstream::master())
+    {
+        mkDir(logDir());
+        iterationLog_.reset(new OFstream(logDir()/"rigidIterations.csv"));
+        iterationLog_().precision(12);
+        iterationLog_() << "iteration,Fx,Fy,Fz,residualU,residualP" << nl;
+    }
+}
+
+
+void Foam::fluidSolidCoupling::closeIterationLog()
+{
+    recordIterations_ = false;
+    iterationLog_.clear();
+}
+
+
 void Foam::fluidSolidCoupling::recordIteration
 (
     const label iteration,
@@ -90,13 +110,6 @@ void Foam::fluidSolidCoupling::recordIteration
     if (!recordIterations_ || !Pstream::master())
     {
         return;
-    }
-    if (!iterationLog_.valid())
-    {
-        mkDir(logDir());
-        iterationLog_.reset(new OFstream(logDir()/"rigidIterations.csv"));
-        iterationLog_().precision(12);
-        iterationLog_() << "iteration,Fx,Fy,Fz,residualU,residualP" << nl;
     }
     iterationLog_() << iteration << ',' << force.x() << ',' << force.y() << ',' << force.z()
         << ',' << residualU << ',' << residualP << nl;

@@ -188,9 +188,10 @@ if ! awk -F, 'NR == 2 && $11 == 1 {ok = 1} END {exit !ok}' "$case/postProcessing
     foamDictionary "$case/system/controlDict" -entry writeInterval -set $((last + window)) > /dev/null
     ( cd "$case" && simpleFoam > log.simpleFoam.window 2>&1 ) || log "simpleFoam window failed (see log.simpleFoam.window)"
 fi
-"$py" - "$case" "$level" "$cells" "$flow" "$scheme" "$t0" "$t1" "$out/section2d.csv" $onsets <<'EOP'
+"$py" - "$case" "$level" "$cells" "$flow" "$scheme" "$t0" "$t1" "$out/section2d.csv" "$window" $onsets <<'EOP'
 import csv, glob, math, os, re, sys
-case, level, cells, flow, scheme, t0, t1, outCsv, onSuction, sepSuction, onPressure, sepPressure = sys.argv[1:]
+(case, level, cells, flow, scheme, t0, t1, outCsv, window, onSuction, sepSuction, onPressure,
+ sepPressure) = sys.argv[1:]
 row = next(csv.DictReader(open(os.path.join(case, "postProcessing/fsi/forces.csv"))))
 rho, U, c, dz = 998.2, 2.0, 0.05, 0.001
 q = 0.5 * rho * U * U
@@ -212,17 +213,23 @@ if yp:
     m = re.search(r"min = ([-+\deE.]+), max = ([-+\deE.]+), average = ([-+\deE.]+)", yp[-1])
     if m:
         ypMin, ypMax, ypMean = map(float, m.groups())
+def clBand(fys):
+    """(C_L min, C_L max) of a list of F_y [N]; NaN for fewer than two values."""
+    if len(fys) < 2:
+        return float("nan"), float("nan")
+    return -max(fys) / (q * c * dz), -min(fys) / (q * c * dz)
+
+
 clMin = clMax = float("nan")
-window = [p for p in glob.glob(os.path.join(case, "postProcessing/forces/*/force.dat"))
-          if os.path.getsize(p) > 0]
-if window:
+windowFiles = [p for p in glob.glob(os.path.join(case, "postProcessing/forces/*/force.dat"))
+               if os.path.getsize(p) > 0]
+if windowFiles:
     fys = []
-    for l in open(sorted(window)[-1]):
+    for l in open(sorted(windowFiles)[-1]):
         if l.strip() and not l.startswith("#"):
             v = [float(x) for x in re.findall(r"[-+]?\d+\.?\d*(?:[eE][-+]?\d+)?", l)]
             fys.append(v[2])
-    if len(fys) > 1:
-        clMin, clMax = -max(fys) / (q * c * dz), -min(fys) / (q * c * dz)
+    clMin, clMax = clBand(fys)
 r = dict(level=level, cells=cells, flow=flow, scheme=scheme,
          iterations=row["simpleIterations"], converged=row["converged"],
          C_L=-fy / (q * c * dz), C_D=fx / (q * c * dz), C_M=mz / (q * c * c * dz),
@@ -234,10 +241,10 @@ r = dict(level=level, cells=cells, flow=flow, scheme=scheme,
 # last SIMPLE_WINDOW iterations of a solve that reached the cap, beside the simpleFoam window's
 hist = os.path.join(case, "postProcessing/fsi/rigidIterations.csv")
 if row["converged"] != "1" and os.path.exists(hist):
-    fyOwn = [float(h["Fy"]) for h in csv.DictReader(open(hist))][-int(os.environ.get("SIMPLE_WINDOW", "300")):]
+    fyOwn = [float(h["Fy"]) for h in csv.DictReader(open(hist))][-int(window):]
     if len(fyOwn) > 1:
         print("section2d: fluid-app's own C_L over its last %d iterations: %.6g .. %.6g"
-              % (len(fyOwn), -max(fyOwn) / (q * c * dz), -min(fyOwn) / (q * c * dz)))
+              % ((len(fyOwn),) + clBand(fyOwn)))
 with open(outCsv, "w") as f:
     f.write(",".join(r) + "\n")
     f.write(",".join(("%.8g" % v) if isinstance(v, float) else str(v) for v in r.values()) + "\n")

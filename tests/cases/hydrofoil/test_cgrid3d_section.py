@@ -15,10 +15,7 @@ here = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(here, "..", "..", "..", "cases", "hydrofoil", "tools"))
 import cgrid3d  # noqa: E402
 import mesh2d  # noqa: E402  (cgrid3d put section2d on the path)
-
-
-def polygonArea(p):
-    return 0.5 * float(np.sum(p[:, 0] * np.roll(p[:, 1], -1) - np.roll(p[:, 0], -1) * p[:, 1]))
+import naca66a08  # noqa: E402  (mesh2d put geometry on the path)
 
 
 class CgridSectionTest(unittest.TestCase):
@@ -39,7 +36,7 @@ class CgridSectionTest(unittest.TestCase):
             pts = np.vstack([xy, extra])
             a = cgrid3d.signedArea(pts, tri)
             self.assertTrue(np.all(a > 0) or np.all(a < 0), name)
-            poly = abs(polygonArea(p))
+            poly = abs(naca66a08.polygonArea(p))
             self.assertAlmostEqual(abs(a.sum()), poly, delta=1e-9 * poly, msg=name)
 
 

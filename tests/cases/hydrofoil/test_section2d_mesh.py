@@ -95,5 +95,6 @@ class Section2dMeshTest(unittest.TestCase):
         with self.assertRaises(ValueError):
             mesh2d.clustered(n, 0.05)
 
+
 if __name__ == "__main__":
     unittest.main()
