@@ -62,7 +62,13 @@ Foam::fluidSolidCoupling::fluidSolidCoupling
     maxSkewness_(20),
     nGlobalPoints_(0),
     nGlobalFaces_(0),
-    writeInterfaceData_(false)
+    writeInterfaceData_(false),
+    writeSolveIterations_(dict_.getOrDefault<bool>("writeSolveIterations", false)),
+    warmStart_
+    (
+        mesh,
+        flowWarmStart::Settings::read(dict_.subOrEmptyDict("coupled"), dict_.objectPath())
+    )
 {
     if (patchi_ < 0)
     {
@@ -123,7 +129,8 @@ Foam::fluidSolidCoupling::fluidSolidCoupling
     Info<< "fsi: interface patch " << patchName_ << ": " << nGlobalPoints_
         << " points, " << nGlobalFaces_ << " faces; rho " << rho_
         << " kg/m^3; mesh limits: non-orthogonality " << maxNonOrth_
-        << " deg, skewness " << maxSkewness_ << nl << endl;
+        << " deg, skewness " << maxSkewness_ << "; " << warmStart_.describe().c_str()
+        << nl << endl;
 }
 
 
@@ -226,7 +233,13 @@ void Foam::fluidSolidCoupling::answerSolve
             << " consecutive iterations the estimate must hold" << endl;
         accuracyAnnounced_ = true;
     }
+    startFlow(c);
+    solveStep_ = c.step;
+    solveIteration_ = c.iteration;
+    recordIterations_ = writeSolveIterations_;
     const SolveResult r = solve(c.accuracyGiven ? askedControls(own, c) : own);
+    recordIterations_ = false;
+    warmStart_.record(displacement_);
     if (c.accuracyGiven)
     {
         Info<< "fsi: asked force tolerance " << c.forceTolerance << ", residual drop "
@@ -255,6 +268,28 @@ void Foam::fluidSolidCoupling::answerSolve
     );
     logSolve(c, r, total, gMax(mag(displacement_)()), wallSeconds, exchangeSeconds);
     transport_->sendForces(c, report);
+}
+
+
+void Foam::fluidSolidCoupling::startFlow(const fsi::fluid::Command& c)
+{
+    if (!warmStart_.settings().secant)
+    {
+        return;
+    }
+    const flowWarmStart::Prediction w = warmStart_.predict(displacement_);
+    if (w.applied)
+    {
+        Info<< "fsi: step " << c.step << " iteration " << c.iteration
+            << ": flow extrapolated from " << w.columns << " earlier interface change(s), "
+            << 100*w.captured << " % of this change in their span, largest coefficient "
+            << w.largestCoefficient << endl;
+    }
+    else
+    {
+        Info<< "fsi: step " << c.step << " iteration " << c.iteration
+            << ": flow from the last solve (" << w.reason.c_str() << ")" << endl;
+    }
 }
 
 
@@ -393,6 +428,23 @@ int Foam::fluidSolidCoupling::runCoupled
     if (restart)
     {
         Info<< "fsi: restarted from the fields of time " << mesh_.time().timeName() << nl << endl;
+        if (warmStart_.settings().secant)
+        {
+            string why;
+            const bool read = warmStart_.read(warmStartFile(), displacement_.size(), why);
+            if (returnReduce(read, andOp<bool>()))
+            {
+                Info<< "fsi: warm start: the earlier solves' flows of that level read from "
+                    << warmStartFile() << endl;
+            }
+            else
+            {
+                string none;
+                warmStart_.read(fileName(), 0, none);   // keep none on any rank
+                Info<< "fsi: warm start: starting without earlier solves (" << why.c_str()
+                    << ")" << endl;
+            }
+        }
     }
     Info<< "fsi: coupled mode, transport: " << transport_->describe().c_str() << nl << endl;
     writeInterfaceGeometry(geometry);

@@ -39,6 +39,27 @@ void Foam::fluidSolidCoupling::openCouplingLogs(const bool restart)
     {
         OFstream(logDir()/"accepted.csv")() << "step,time,timeName" << endl;
     }
+    if (writeSolveIterations_)
+    {
+        const bool appendIterations = restart && isFile(logDir()/"solveIterations.csv");
+        solveIterationLog_.reset
+        (
+            new OFstream
+            (
+                logDir()/"solveIterations.csv",
+                IOstream::ASCII,
+                IOstream::currentVersion,
+                IOstream::UNCOMPRESSED,
+                appendIterations
+            )
+        );
+        solveIterationLog_().precision(12);
+        if (!appendIterations)
+        {
+            solveIterationLog_()
+                << "step,iteration,simpleIteration,Fx,Fy,Fz,residualU,residualP" << nl;
+        }
+    }
 }
 
 
@@ -111,8 +132,17 @@ void Foam::fluidSolidCoupling::recordIteration
     {
         return;
     }
-    iterationLog_() << iteration << ',' << force.x() << ',' << force.y() << ',' << force.z()
-        << ',' << residualU << ',' << residualP << nl;
+    if (iterationLog_.valid())
+    {
+        iterationLog_() << iteration << ',' << force.x() << ',' << force.y() << ','
+            << force.z() << ',' << residualU << ',' << residualP << nl;
+    }
+    else if (solveIterationLog_.valid())
+    {
+        solveIterationLog_() << solveStep_ << ',' << solveIteration_ << ',' << iteration << ','
+            << force.x() << ',' << force.y() << ',' << force.z() << ',' << residualU << ','
+            << residualP << nl;
+    }
 }
 
 
@@ -188,6 +218,12 @@ void Foam::fluidSolidCoupling::writeInterfaceCsv
 }
 
 
+Foam::fileName Foam::fluidSolidCoupling::warmStartFile() const
+{
+    return mesh_.time().timePath()/"uniform"/"fsiWarmStart";
+}
+
+
 void Foam::fluidSolidCoupling::writeLevel(const scalar time)
 {
     Time& runTime = const_cast<Time&>(mesh_.time());
@@ -196,6 +232,7 @@ void Foam::fluidSolidCoupling::writeLevel(const scalar time)
     runTime.setTime(time, iterIndex);
     Info<< "fsi: writing fields to time " << runTime.timeName() << nl << endl;
     runTime.writeNow();
+    warmStart_.write(warmStartFile());
     runTime.setTime(iterTime, iterIndex);
 }
 

@@ -70,6 +70,13 @@ void Foam::fluidSolidCoupling::moveInterface
     }
     refCast<valuePointPatchVectorField>(ppf) == displacement_;
 
+    // warmStart flux kept: the flux through each face from U before the motion (below)
+    autoPtr<surfaceScalarField> fluxBefore;
+    if (warmStart_.settings().keepFlux)
+    {
+        fluxBefore.reset(new surfaceScalarField("fluxBeforeMotion", fvc::flux(U_)));
+    }
+
     const clockTime clock;
     mesh_.update();
 
@@ -101,8 +108,18 @@ void Foam::fluidSolidCoupling::moveInterface
         );
     }
 
-    // Steady: fluxes from U on the moved mesh, no mesh-flux terms
-    phi_ = fvc::flux(U_);
+    // Steady, no mesh-flux terms. interpolated (default): phi = the flux of U on the moved
+    // faces. kept: the last pressure equation's flux (mass conserving, with its pressure
+    // smoothing part) plus the change of U's flux over the moved faces, so that a converged
+    // flow stays converged when nothing moved (flowWarmStart.H).
+    if (fluxBefore.valid())
+    {
+        phi_ += fvc::flux(U_) - fluxBefore();
+    }
+    else
+    {
+        phi_ = fvc::flux(U_);
+    }
 
     // The mesh now stands still until the next interface motion. Refresh the one piece of
     // geometry that is only updated while the mesh is flagged moving (the turbulence model's

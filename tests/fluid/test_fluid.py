@@ -279,6 +279,49 @@ def t_wall_at_rest(a):
           "wall velocity on the moved body patch: max component %.3e m/s <= 1e-12 (motion %.3e m)" % (umax, moved))
 
 
+def t_warm_start(a):
+    """fsiDict coupled.warmStart secant (fluid-app/coupling/flowWarmStart.H): a prescribed
+    rotation of the body in three equal steps of 1 deg, each solved to a force change of 1e-5
+    per SIMPLE iteration. The third solve starts from the flow extrapolated along the first two
+    steps' interface change: it must reach the steady flow (a deep solve's, to 5e-4) in at most
+    half the SIMPLE iterations of the plain warm start. Steps 1 and 2 have no model yet and must
+    be identical. With no motion at all and warmStart flux kept a solve must stop at its
+    minimum: phi keeps the pressure equation's flux across a motion (fluidSolidCouplingMotion.C),
+    so a converged flow stays converged."""
+    motion = "prescribed { type rotation; origin (0.2 0.2 0); axis (0 0 1); angle %g; steps 3; solveFlow true; }"
+    loose = "coupled { maxIterations 3000; residualDrop 0; forceTolerance 1e-5; residualRequired false; minIterations 5; warmStart { type %s; } }\n"
+    deep = "coupled { maxIterations 3000; residualDrop 0; forceTolerance 1e-7; minIterations 5; }\n"
+    runs = {"previous": loose % "previous" + motion % 3, "secant": loose % "secant" + motion % 3,
+            "deep": deep + motion % 3, "at-rest": loose % "previous; flux kept" + motion % 0}
+    res = {}
+    for name, fsi in runs.items():
+        d = prepare(a, "warm-start-" + name, single=True, converged_start=True, extra_fsi=fsi)
+        rc, log = run([a.fluid_app, "-prescribed", "-case", d], os.path.join(d, "log.fluid-app"))
+        rows = read_csv(os.path.join(d, "postProcessing", "fsi", "coupling.csv")) if rc == 0 else []
+        check(rc == 0 and len(rows) == 3 and all(r[3] == 1 for r in rows),
+              "%s: exit 0, 3 SOLVEs, each converged (SIMPLE iterations %s)" % (name, [int(r[2]) for r in rows]))
+        res[name] = (rows, log)
+    prev, sec, ref = res["previous"][0], res["secant"][0], res["deep"][0]
+    check(all(int(r[2]) == 5 for r in res["at-rest"][0]),
+          "no motion, flux kept: every solve stops at its minimum of 5 SIMPLE iterations (%s)" % [int(r[2]) for r in res["at-rest"][0]])
+    m = re.search(r"step 3 iteration 1: flow extrapolated from (\d+) earlier interface change\(s\), (\S+) %", res["secant"][1])
+    check(m is not None and int(m.group(1)) == 1 and float(m.group(2)) >= 99.0,
+          "secant: step 3 starts from the flow extrapolated along 1 earlier change, %s %% of its change in the span (>= 99 %%)"
+          % (m.group(2) if m else "?"))
+    check(res["secant"][1].count("flow from the last solve (fewer than two earlier solves)") == 2,
+          "secant: steps 1 and 2 start from the last flow (fewer than two earlier solves)")
+    same = all(int(prev[i][2]) == int(sec[i][2]) and math.dist(prev[i][6:9], sec[i][6:9]) <= 1e-12 * math.hypot(*prev[i][6:9])
+               for i in (0, 1))
+    check(same, "steps 1 and 2 (no model yet): the same SIMPLE iterations and forces (rel. 1e-12) with both warm starts")
+    Fref = ref[2][6:9]
+    for name, rows in (("previous", prev), ("secant", sec)):
+        err = math.dist(rows[2][6:9], Fref) / math.hypot(*Fref)
+        check(err <= 5e-4, "%s: step 3 interface force %s vs the deep solve's %s: rel. error %.2e <= 5e-4"
+              % (name, rows[2][6:9], Fref, err))
+    n_prev, n_sec = int(prev[2][2]), int(sec[2][2])
+    check(n_sec <= 0.5 * n_prev, "step 3 SIMPLE iterations: secant %d <= 0.5 x previous %d" % (n_sec, n_prev))
+
+
 def t_bad_case(a):
     """Bad OpenFOAM-case input: a missing interface patch, a missing fsiDict key, a restart
     without a checkpointed level. Each stops non-zero, naming system/fsiDict (or the file) and the fix."""
@@ -293,6 +336,10 @@ def t_bad_case(a):
     rc, log = run([a.fluid_app, "-rigid", "-case", d], os.path.join(d, "log.missing-key"))
     check(rc != 0 and "interfacePatch" in log and "fsiDict" in log,
           "missing interfacePatch key: exit %d, message names the key and the file" % rc)
+    open(fsi, "w").write(good + "\ncoupled { warmStart { type secnt; } }\n")
+    rc, log = run([a.fluid_app, "-rigid", "-case", d], os.path.join(d, "log.bad-warm-start"))
+    check(rc != 0 and "coupled.warmStart.type must be previous or secant, got 'secnt'" in log,
+          "unknown coupled.warmStart.type: exit %d, message names the file's key and the choices" % rc)
     # The run mode is resolved once, before OpenFOAM starts (fluid-app/coupling/runMode.H).
     open(fsi, "w").write(good + "\nmode rigd;\n")
     rc, log = run([a.fluid_app, "-case", d], os.path.join(d, "log.bad-mode"))
@@ -478,7 +525,7 @@ def t_solid_death(a):
 
 TESTS = {"cfd1-coarse": t_cfd1_coarse, "cfd1-fine": t_cfd1_fine, "force-consistency": t_force_consistency,
          "motion-rotation": t_motion_rotation, "motion-bending": t_motion_bending,
-         "quality-guard": t_quality_guard, "wall-at-rest": t_wall_at_rest, "bad-case": t_bad_case, "parallel-equivalence": t_parallel_equivalence,
+         "quality-guard": t_quality_guard, "wall-at-rest": t_wall_at_rest, "warm-start": t_warm_start, "bad-case": t_bad_case, "parallel-equivalence": t_parallel_equivalence,
          "mpmd": t_mpmd, "port": t_port, "peer-abort": t_peer_abort,
          "failed-start": t_failed_start, "solid-death": t_solid_death}
 
