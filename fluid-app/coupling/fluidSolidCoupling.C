@@ -439,8 +439,7 @@ int Foam::fluidSolidCoupling::runCoupled
             }
             else
             {
-                string none;
-                warmStart_.read(fileName(), 0, none);   // keep none on any rank
+                warmStart_.clear();   // on every rank, also where the file was read
                 Info<< "fsi: warm start: starting without earlier solves (" << why.c_str()
                     << ")" << endl;
             }
