@@ -299,6 +299,10 @@ void Foam::fluidSolidCoupling::acceptLevel(const fsi::fluid::Command& c)
     reportForces("accepted");
     writeLevel(c.time);
     logAccepted(c);   // after the fields: a listed level is complete on disk (restart)
+    if (solveIterationLog_.valid())
+    {
+        solveIterationLog_().flush();   // complete up to the accepted level
+    }
 }
 
 // * * * * * * * * * * * * * * * Member Functions  * * * * * * * * * * * * * //
