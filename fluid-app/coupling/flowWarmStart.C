@@ -254,17 +254,26 @@ bool Foam::flowWarmStart::read
     }
     std::string tag;
     std::getline(is, tag);
+    if (!is || tag != snapshotFileTag)
+    {
+        why = file + " is not a warm-start snapshot file of this version";
+        return false;
+    }
     label keepFlux = -1, nScalars = -1, nSnapshots = -1;
     is >> keepFlux >> nScalars;
-    wordList names(max(nScalars, label(0)));
+    if (!is || nScalars != scalarNames_.size())
+    {
+        why = file + " was written with other warm-start settings or fields";
+        return false;
+    }
+    wordList names(nScalars);
     for (word& name : names)
     {
         is >> name;
     }
     is >> nSnapshots;
     is.get();   // the newline
-    if (!is || tag != snapshotFileTag || bool(keepFlux) != settings_.keepFlux
-     || names != scalarNames_ || nSnapshots < 0)
+    if (!is || bool(keepFlux) != settings_.keepFlux || names != scalarNames_ || nSnapshots < 0)
     {
         why = file + " was written with other warm-start settings or fields";
         return false;
@@ -299,6 +308,10 @@ bool Foam::flowWarmStart::read
             return false;
         }
         snapshots_.push_back(std::move(s));
+    }
+    while (label(snapshots_.size()) > settings_.snapshots)   // fewer kept now than then
+    {
+        snapshots_.pop_back();
     }
     return true;
 }

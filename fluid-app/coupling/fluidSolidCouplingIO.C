@@ -232,7 +232,19 @@ void Foam::fluidSolidCoupling::writeLevel(const scalar time)
     runTime.setTime(time, iterIndex);
     Info<< "fsi: writing fields to time " << runTime.timeName() << nl << endl;
     runTime.writeNow();
-    warmStart_.write(warmStartFile());
+    if (warmStart_.settings().secant)
+    {
+        // Snapshots of the newest two levels only (a restart starts from the solid's latest
+        // checkpoint, at most one level behind the fluid's); older ones would double the disk
+        // use of a run (six flows per level and rank).
+        warmStart_.write(warmStartFile());
+        warmStartFiles_.push_back(warmStartFile());
+        while (warmStartFiles_.size() > 2)
+        {
+            Foam::rm(warmStartFiles_.front());
+            warmStartFiles_.pop_front();
+        }
+    }
     runTime.setTime(iterTime, iterIndex);
 }
 
