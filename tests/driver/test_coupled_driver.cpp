@@ -462,8 +462,11 @@ void expectRestartReproducesTheUninterruptedRun(const std::string& predictor)
             EXPECT_DOUBLE_EQ(a.time, b.time);
             EXPECT_EQ(a.couplingIterations, b.couplingIterations) << "level " << a.level;
             EXPECT_NEAR(a.force.y(), b.force.y(), 1e-9 * std::abs(a.force.y()));
-            // the same predictor state: the same first iterate
-            EXPECT_NEAR(a.firstResidual, b.firstResidual, 1e-6 * a.firstResidual + 1e-15)
+            // the same predictor state: the same first iterate, to round-off of the solid's
+            // solves (the secant predictor's columns K^-1 W on 2 ranks and on 1 differ by
+            // 2.5e-14 m here, 1e-11 of the displacement; the first residual is 1.6e-8 m)
+            EXPECT_NEAR(a.firstResidual, b.firstResidual,
+                        1e-6 * a.firstResidual + 1e-9 * std::abs(whole.meanUy))
                 << "level " << a.level;
         }
         EXPECT_NEAR(continued.meanUy, whole.meanUy, 1e-9 * std::abs(whole.meanUy));

@@ -124,6 +124,12 @@ TEST(CouplingParameters, BadInputNamesTheKey)
               std::string::npos);
     EXPECT_NE(errorOf(minimal + "  recovery: {retries: 2}\n").find("unknown key 'retries'"),
               std::string::npos);
+    EXPECT_NE(errorOf(minimal + "  secant: {response_tolerance: 0.5}\n")
+                  .find("coupling.secant.response_tolerance"),
+              std::string::npos);
+    EXPECT_NEAR(parseText(minimal).secant.responseTolerance, 1e-2, 1e-15); // the default
+    EXPECT_EQ(parseText(minimal + "  secant: {response_tolerance: 0}\n").secant.responseTolerance,
+              0.0);
 }
 
 TEST(CouplingParameters, PartitionOfUnityMappingParsesWithDefaultsAndNamesBadKeys)

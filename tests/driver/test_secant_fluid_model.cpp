@@ -87,6 +87,55 @@ TEST(SecantFluidModel, ExactForAnAffineFluidOnceItsDirectionsAreSampled)
     EXPECT_LT((prediction->displacement - exact).norm(), 1e-12 * exact.norm());
 }
 
+// With the solid's linear response (respond: A W for the load changes W, here A = C), the
+// columns cost no solve: one solve for the base, one respond() call for all columns, and the
+// same exact fixed point. Those answers are not kept: a second prediction asks again.
+TEST(SecantFluidModel, ColumnsFromTheSolidsLinearResponse)
+{
+    AffineProblem p;
+    SecantFluidModel model(3);
+    const Eigen::VectorXd start = Eigen::VectorXd::Random(kSize);
+    Eigen::VectorXd accepted; // the level's last (accepted) interface
+    p.sampleLevel(model, 3,
+                  [&]
+                  {
+                      accepted = start + p.right * Eigen::Vector2d::Random();
+                      return accepted;
+                  });
+    const auto columns = model.selectColumns();
+    ASSERT_EQ(columns.size(), 2u);
+    int responds = 0;
+    const SecantFluidModel::SolidResponse respond = [&](const Eigen::MatrixXd& w)
+    {
+        ++responds;
+        EXPECT_EQ(w.cols(), 2);
+        return Eigen::MatrixXd(p.c * w);
+    };
+    const auto solve = [&](const Eigen::VectorXd& f) { return p.solid(f); };
+    const auto prediction =
+        model.predict(columns, solve, SecantFluidModel::Base::Accepted, respond);
+    ASSERT_TRUE(prediction.has_value());
+    EXPECT_EQ(prediction->solidSolves, 1);
+    EXPECT_EQ(prediction->responseColumns, 2);
+    EXPECT_EQ(p.solves, 1);
+    EXPECT_EQ(responds, 1);
+    const Eigen::VectorXd exact = p.fixedPoint();
+    EXPECT_LT((prediction->displacement - exact).norm(), 1e-12 * exact.norm());
+
+    // a response 1 % off (a loose linear solve) moves the prediction by about that much of
+    // the coupled correction, not more
+    const SecantFluidModel::SolidResponse rough = [&](const Eigen::MatrixXd& w)
+    { return Eigen::MatrixXd(1.01 * p.c * w); };
+    const auto again = model.predict(columns, solve, SecantFluidModel::Base::Accepted, rough);
+    ASSERT_TRUE(again.has_value());
+    EXPECT_EQ(again->solidSolves, 0); // the base's answer is kept
+    EXPECT_EQ(again->responseColumns, 2);
+    // the coupled correction: from the solid under the accepted loads to the fixed point
+    const double correction = (exact - (p.s0 + p.c * p.fluid(accepted))).norm();
+    EXPECT_GT((again->displacement - exact).norm(), 1e-6 * correction);
+    EXPECT_LT((again->displacement - exact).norm(), 0.05 * correction);
+}
+
 // With one sampled direction only the component of the fluid's answer along it is modelled: the
 // prediction is not exact, and solve() is called once per column plus once.
 TEST(SecantFluidModel, OneColumnModelsOneDirection)

@@ -100,3 +100,118 @@ TEST(LinearUpdate, FiniteStrainAlwaysRunsNewton)
     ASSERT_TRUE(again.converged);
     EXPECT_EQ(again.message.find("linear update"), std::string::npos);
 }
+
+namespace
+{
+// max |a - b| / max |b| over the wetted displacement vectors
+double relativeDifference(const Eigen::VectorXd& a, const Eigen::VectorXd& b)
+{
+    return (a - b).lpNorm<Eigen::Infinity>() / b.lpNorm<Eigen::Infinity>();
+}
+
+Eigen::VectorXd wettedDisplacement(const fe::StructuralSolver& solver)
+{
+    const auto u = solver.wettedNodeDisplacements();
+    return Eigen::Map<const Eigen::VectorXd>(u.data(), static_cast<Eigen::Index>(u.size()));
+}
+
+// The response to a load change, by two full solves: S(F + W) - S(F) at level 1.
+struct ResponseCase
+{
+    mesh::Mesh mesh = beam();
+    std::unique_ptr<material::Material> law =
+        material::makeMaterial(viscoelastic(), material::Kinematics::SmallStrain);
+    fe::ProblemDefinition problem;
+    ResponseCase(double refactorDrift)
+    {
+        problem.clamped = {"x0"};
+        problem.wetted = "x1";
+        problem.refactorShearDrift = refactorDrift;
+    }
+    // level 0 accepted, level 1 (dt 0.5 s) solved under F; the solver is left there
+    void solveLevelOne(fe::StructuralSolver& solver, std::size_t n) const
+    {
+        ASSERT_TRUE(solver.solve({0.0, 0.0}, tipLoad(n, -10, 0)).converged);
+        solver.acceptLevel();
+        ASSERT_TRUE(solver.solve({0.5, 0.5}, tipLoad(n, -11, 1)).converged);
+    }
+};
+
+Eigen::MatrixXd loadChanges(std::size_t n)
+{
+    Eigen::MatrixXd w(3 * n, 2);
+    const auto a = tipLoad(n, -2, 3), b = tipLoad(n, 1, 0);
+    for (std::size_t i = 0; i < 3 * n; ++i)
+    {
+        w(static_cast<Eigen::Index>(i), 0) = a.forces[i];
+        w(static_cast<Eigen::Index>(i), 1) = b.forces[i] * (1.0 + 0.1 * static_cast<double>(i % 7));
+    }
+    return w;
+}
+} // namespace
+
+// interfaceResponse(W) = S(F + W) - S(F) (the solid is affine in its loads at a level), to the
+// asked relative residual on a stale factorization (CG) and exactly on a current one; it changes
+// nothing of the solver's state.
+TEST(InterfaceResponse, EqualsTheDifferenceOfTwoSolves)
+{
+    for (const double drift : {0.0, 1e-6}) // 0: CG on the level-0 factor; 1e-6: refactorized
+    {
+        SCOPED_TRACE(drift == 0.0 ? "stale factorization (CG)" : "current factorization");
+        const ResponseCase c(drift);
+        fe::StructuralSolver solver(MPI_COMM_WORLD, c.mesh, *c.law, c.problem);
+        const std::size_t n = solver.wettedNodes().size();
+        c.solveLevelOne(solver, n);
+        const Eigen::VectorXd base = wettedDisplacement(solver);
+        const std::vector<double> before = solver.displacement();
+        const Eigen::MatrixXd w = loadChanges(n);
+        const int factorizations = solver.factorizationCount();
+
+        const Eigen::MatrixXd loose = solver.interfaceResponse(w, 1e-2);
+        const Eigen::MatrixXd tight = solver.interfaceResponse(w, 1e-9);
+        EXPECT_EQ(solver.interfaceResponseColumns(), 4);
+        EXPECT_EQ(solver.factorizationCount(), factorizations); // no refactorization for it
+        EXPECT_EQ(solver.displacement(), before);               // state untouched (exact)
+
+        for (Eigen::Index j = 0; j < w.cols(); ++j)
+        {
+            fe::InterfaceLoads shifted = tipLoad(n, -11, 1);
+            for (std::size_t i = 0; i < 3 * n; ++i)
+                shifted.forces[i] += w(static_cast<Eigen::Index>(i), j);
+            fe::StructuralSolver reference(MPI_COMM_WORLD, c.mesh, *c.law, c.problem);
+            c.solveLevelOne(reference, n);
+            ASSERT_TRUE(reference.solve({0.5, 0.5}, shifted).converged);
+            const Eigen::VectorXd exact = wettedDisplacement(reference) - base;
+            EXPECT_LT(relativeDifference(tight.col(j), exact), 1e-6) << "column " << j;
+            // a residual of 1e-2 |b| leaves an error of that order (the stale factor is a good
+            // preconditioner); a current factor is exact
+            EXPECT_LT(relativeDifference(loose.col(j), exact), drift == 0.0 ? 3e-2 : 1e-6)
+                << "column " << j;
+        }
+        // the level's next solve is still the linear update of the last converged solve
+        const auto again = solver.solve({0.5, 0.5}, tipLoad(n, -12, 3));
+        ASSERT_TRUE(again.converged);
+        EXPECT_NE(again.message.find("linear update"), std::string::npos) << again.message;
+    }
+}
+
+TEST(InterfaceResponse, NeedsALinearProblemAndAConvergedSolve)
+{
+    const ResponseCase c(0.05);
+    fe::StructuralSolver solver(MPI_COMM_WORLD, c.mesh, *c.law, c.problem);
+    const std::size_t n = solver.wettedNodes().size();
+    EXPECT_TRUE(solver.linearInLoads());
+    EXPECT_THROW(solver.interfaceResponse(loadChanges(n), 1e-2), std::logic_error); // no solve
+    ASSERT_TRUE(solver.solve({0.0, 0.0}, tipLoad(n, -10, 0)).converged);
+    EXPECT_THROW(solver.interfaceResponse(Eigen::MatrixXd::Zero(5, 1), 1e-2),
+                 std::invalid_argument);
+    EXPECT_THROW(solver.interfaceResponse(loadChanges(n), 0.0), std::invalid_argument);
+
+    const auto law = material::makeMaterial(viscoelastic(), material::Kinematics::TotalLagrangian);
+    fe::ProblemDefinition p = c.problem;
+    p.kinematics = material::Kinematics::TotalLagrangian;
+    fe::StructuralSolver finite(MPI_COMM_WORLD, c.mesh, *law, p);
+    ASSERT_TRUE(finite.solve({0.0, 0.0}, tipLoad(n, -10, 0)).converged);
+    EXPECT_FALSE(finite.linearInLoads());
+    EXPECT_THROW(finite.interfaceResponse(loadChanges(n), 1e-2), std::logic_error);
+}

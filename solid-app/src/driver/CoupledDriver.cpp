@@ -119,6 +119,7 @@ struct CoupledDriver::Impl
     // is broadcast).
     SecantFluidModel secant{params.secant.maxColumns, params.secant.levels};
     bool secantSamples = params.predictor == "secant" || params.secant.couplingIterations;
+    std::string predictorNote; // what the level's predictor did (iteration 1's note)
     double dtLast = 0.0;
     double lastFirstResidual = 0.0; // of the last accepted level [m] (0: none yet)
     mapping::Values nodalDisplacement, pointDisplacement, nodalForceRows; // rank 0 buffers
@@ -406,6 +407,7 @@ LevelAttempt CoupledDriver::Impl::attemptLevel(LevelRecord& record, bool usePred
     secant.clearResponses(); // the solid's operator of this attempt (dt) is a new one
     // A retried level (a recovery cure) iterates with the accelerator alone.
     const bool secantIterations = params.secant.couplingIterations && usePredictor;
+    predictorNote.clear();
     if (auto failed = predictFirstIterate(record, usePredictor))
         return *failed;
     accelerator->beginLevel();
@@ -414,6 +416,8 @@ LevelAttempt CoupledDriver::Impl::attemptLevel(LevelRecord& record, bool usePred
     for (int it = 1; it <= params.maxIterations; ++it)
     {
         IterationLine line = iterationLine(record, it);
+        if (it == 1)
+            line.note = predictorNote;
         const FluidAccuracy accuracy =
             accuracyFor(record.level, it, lastResidual, interfaceConverged);
         const FluidResponse response = solveFluid(record, it, accuracy, line);
@@ -437,7 +441,8 @@ LevelAttempt CoupledDriver::Impl::attemptLevel(LevelRecord& record, bool usePred
         if (params.secant.couplingIterations)
             secant.setNewestResponse(solverOutput);
         if (report.loadCuts > 0)
-            line.note = "[cure] solid load sub-stepping x" + std::to_string(1 << report.loadCuts);
+            line.note = "[cure] solid load sub-stepping x" + std::to_string(1 << report.loadCuts) +
+                        (line.note.empty() ? "" : "; " + line.note);
 
         auto outcome =
             judge(record, response, accuracy, it == 1 ? -1.0 : record.firstResidual, line);
@@ -517,13 +522,20 @@ CoupledDriver::Impl::solveSecantModel(LevelRecord& record, SecantFluidModel::Bas
             throw std::runtime_error(report.message);
         return toVector(solid.wettedNodeDisplacements());
     };
+    // The predictor's columns need predictor accuracy only: linear solves without residual
+    // assembly (coupling.secant.response_tolerance) where the solid is linear in its loads.
+    SecantFluidModel::SolidResponse respond;
+    if (base == SecantFluidModel::Base::Accepted && params.secant.responseTolerance > 0.0 &&
+        solid.linearInLoads())
+        respond = [&](const Eigen::MatrixXd& loadChanges)
+        { return solid.interfaceResponse(loadChanges, params.secant.responseTolerance); };
     struct AddTime
     {
         double& total;
         Clock::time_point t0;
         ~AddTime() { total += secondsSince(t0); }
     } addTime{summary.solidSeconds, t0};
-    return secant.predict(columns, solveSolid, base);
+    return secant.predict(columns, solveSolid, base, respond);
 }
 
 // coupling.predictor secant: the solid at the new time coupled to the secant model of the fluid
@@ -542,7 +554,14 @@ std::optional<LevelAttempt> CoupledDriver::Impl::predictSecant(LevelRecord& reco
                             0};
     }
     if (prediction)
+    {
         iterate = prediction->displacement;
+        std::ostringstream note;
+        note << "secant predictor (" << prediction->columns << " columns, "
+             << prediction->solidSolves << " solid solves, " << prediction->responseColumns
+             << " response columns)";
+        predictorNote = note.str();
+    }
     else if (twoLevels)
         iterate = linearExtrapolation(uLast, uBeforeLast, record.dt / dtLast);
     return std::nullopt;

@@ -108,10 +108,15 @@ CouplingParameters CouplingParameters::parse(const config::Block& b)
                  p.predictor);
     if (auto m = b.optionalBlock("secant"))
     {
-        m->allowOnly({"max_columns", "levels", "coupling_iterations"});
+        m->allowOnly({"max_columns", "levels", "coupling_iterations", "response_tolerance"});
         p.secant.maxColumns = m->integer("max_columns", p.secant.maxColumns);
         p.secant.levels = m->integer("levels", p.secant.levels);
         p.secant.couplingIterations = m->flag("coupling_iterations", p.secant.couplingIterations);
+        p.secant.responseTolerance =
+            m->number("response_tolerance", p.secant.responseTolerance);
+        if (!(p.secant.responseTolerance >= 0.0 && p.secant.responseTolerance <= 0.1))
+            m->fail("response_tolerance",
+                    "must be in [0, 0.1] (a relative residual; 0: a full solid solve per column)");
         if (p.secant.maxColumns < 1 || p.secant.maxColumns > 50)
             m->fail("max_columns", "must be in [1, 50] (each column may cost a solid solve)");
         if (p.secant.levels < 1 || p.secant.levels > 20)
@@ -201,7 +206,8 @@ std::string CouplingParameters::echo() const
       << "  divergence_factor: " << divergenceFactor << "\n"
       << "  predictor: " << predictor << "\n"
       << "  secant: {max_columns: " << secant.maxColumns << ", levels: " << secant.levels
-      << ", coupling_iterations: " << (secant.couplingIterations ? "true" : "false") << "}\n"
+      << ", coupling_iterations: " << (secant.couplingIterations ? "true" : "false")
+      << ", response_tolerance: " << secant.responseTolerance << "}\n"
       << "  convergence: {absolute_tolerance: " << convergence.absoluteTolerance
       << ", relative_tolerance: " << convergence.relativeTolerance << "}\n"
       << "  acceleration:\n    type: " << acceleration.type() << "\n"

@@ -161,7 +161,8 @@ std::vector<int> SecantFluidModel::selectColumns(Base which, double minColumnRms
 }
 
 std::optional<SecantFluidModel::Prediction>
-SecantFluidModel::predict(const std::vector<int>& columns, const SolidSolve& solve, Base which)
+SecantFluidModel::predict(const std::vector<int>& columns, const SolidSolve& solve, Base which,
+                          const SolidResponse& respond)
 {
     const int k = static_cast<int>(columns.size());
     if (k == 0)
@@ -188,9 +189,27 @@ SecantFluidModel::predict(const std::vector<int>& columns, const SolidSolve& sol
     }
     const Eigen::VectorXd response = origin.response;
     Eigen::MatrixXd z(response.size(), k);
+    std::vector<int> unknown; // columns whose sample has no answer at this level
+    for (int j = 0; j < k; ++j)
+        if (samples_[columns[j]].response.size() == 0)
+            unknown.push_back(j);
+    if (respond && !unknown.empty())
+    {
+        Eigen::MatrixXd loads(w.rows(), static_cast<Eigen::Index>(unknown.size()));
+        for (std::size_t i = 0; i < unknown.size(); ++i)
+            loads.col(static_cast<Eigen::Index>(i)) = w.col(unknown[i]);
+        const Eigen::MatrixXd answers = respond(loads);
+        if (answers.rows() != response.size() || answers.cols() != loads.cols())
+            throw std::logic_error("SecantFluidModel: the solid response has the wrong size");
+        for (std::size_t i = 0; i < unknown.size(); ++i)
+            z.col(unknown[i]) = answers.col(static_cast<Eigen::Index>(i));
+        p.responseColumns = static_cast<int>(unknown.size());
+    }
     for (int j = 0; j < k; ++j)
     {
         Sample& s = samples_[columns[j]];
+        if (respond && s.response.size() == 0)
+            continue; // answered above
         if (s.response.size() == 0)
         {
             z.col(j) = solve(origin.force + w.col(j)) - response;

@@ -41,6 +41,10 @@ struct SecantParameters
     int maxColumns = 4;              // columns used at most (>= 1)
     int levels = 3;                  // older levels whose solves are kept (>= 1)
     bool couplingIterations = false; // every coupling iteration steps with the model
+    // The predictor's column answers A W_j: linear solves to this relative residual with the
+    // level's tangent, no residual assembly (a solid linear in its loads); 0: a full solid
+    // re-solve per column (exact). In [0, 0.1].
+    double responseTolerance = 1e-2;
 };
 
 class SecantFluidModel
@@ -86,12 +90,17 @@ public:
     // The solid's interface displacement under the given nodal loads at the new level
     // (collective when the solid is distributed). Throws std::runtime_error when it fails.
     using SolidSolve = std::function<Eigen::VectorXd(const Eigen::VectorXd& loads)>;
+    // The solid's interface displacement change under nodal load changes (one per column) at
+    // the new level, to predictor accuracy: the solid's linear response A W (collective when
+    // the solid is distributed). Throws std::runtime_error when it fails.
+    using SolidResponse = std::function<Eigen::MatrixXd(const Eigen::MatrixXd& loadChanges)>;
 
     struct Prediction
     {
         Eigen::VectorXd displacement; // the coupled first iterate [m]
         int columns = 0;              // secant columns used
-        int solidSolves = 0;
+        int solidSolves = 0;          // solve() calls
+        int responseColumns = 0;      // columns answered by respond() (no solve)
     };
     // The samples whose differences to the base are usable columns (indices into the stored
     // samples, newest first): nearly parallel ones (less than 5 % new direction) and those whose
@@ -101,10 +110,14 @@ public:
     std::vector<int> selectColumns(Base base = Base::Accepted, double minColumnRms = 0.0) const;
     // The coupled state of the solid and the model. Calls solve() for the base and each column
     // whose answer at this level is not known yet (at most 1 + columns.size() times; none when
-    // columns is empty). Returns nullopt when columns is empty or the model is degenerate
-    // (I - V^+ Z singular: the coupled model has no unique state, e.g. past static divergence).
+    // columns is empty). With respond (the solid linear in its loads), the unknown columns are
+    // answered by one respond() call instead of a solve() each: Z = A W to respond's accuracy,
+    // a predictor's, so those answers are not kept for later steps. Returns nullopt when
+    // columns is empty or the model is degenerate (I - V^+ Z singular: the coupled model has
+    // no unique state, e.g. past static divergence).
     std::optional<Prediction> predict(const std::vector<int>& columns, const SolidSolve& solve,
-                                      Base base = Base::Accepted);
+                                      Base base = Base::Accepted,
+                                      const SolidResponse& respond = {});
 
 private:
     int base(Base which) const; // index of the base sample (-1: none)

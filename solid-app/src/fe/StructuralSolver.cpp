@@ -808,6 +808,57 @@ bool StructuralSolver::linearUpdate(const std::vector<double>& fTarget, SolveRep
     return true;
 }
 
+Eigen::MatrixXd StructuralSolver::interfaceResponse(const Eigen::MatrixXd& loadChanges,
+                                                    double relativeTolerance)
+{
+    if (!linearProblem_ || !lastConverged_ || !linearUpdateReady_)
+        throw std::logic_error("StructuralSolver::interfaceResponse needs a linear problem and a "
+                               "converged solve at the level");
+    const auto wetted = static_cast<Eigen::Index>(wettedNodes_.size());
+    if (loadChanges.rows() != 3 * wetted)
+        throw std::invalid_argument("StructuralSolver::interfaceResponse: " +
+                                    std::to_string(loadChanges.rows()) + " rows, expected 3 x " +
+                                    std::to_string(wetted) + " wetted nodes");
+    if (!(relativeTolerance > 0.0 && relativeTolerance < 1.0))
+        throw std::invalid_argument(
+            "StructuralSolver::interfaceResponse: relativeTolerance must be in (0, 1)");
+    Eigen::MatrixXd response = Eigen::MatrixXd::Zero(loadChanges.rows(), loadChanges.cols());
+    std::vector<double> rhs(numFree_);
+    const double start = MPI_Wtime();
+    for (Eigen::Index j = 0; j < loadChanges.cols(); ++j)
+    {
+        // the load change on the free dofs (rank 0 holds it; the others add zeros)
+        std::fill(rhs.begin(), rhs.end(), 0.0);
+        double norm2 = 0.0;
+        for (Eigen::Index k = 0; k < wetted; ++k)
+            for (int i = 0; i < 3; ++i)
+            {
+                const int eq = equation_[3 * wettedNodes_[k] + i];
+                if (eq < 0)
+                    continue;
+                const double f = loadChanges(3 * k + i, j);
+                norm2 += f * f;
+                if (rank_ == 0)
+                    rhs[eq] = f;
+            }
+        if (!std::isfinite(norm2))
+            throw std::runtime_error("StructuralSolver::interfaceResponse: non-finite loads");
+        if (norm2 == 0.0)
+            continue;
+        linear_->solveSummedRhs(rhs, relativeTolerance * std::sqrt(norm2));
+        ++responseColumns_;
+        for (Eigen::Index k = 0; k < wetted; ++k)
+            for (int i = 0; i < 3; ++i)
+            {
+                const int eq = equation_[3 * wettedNodes_[k] + i];
+                if (eq >= 0)
+                    response(3 * k + i, j) = rhs[eq];
+            }
+    }
+    linearSeconds_ += MPI_Wtime() - start;
+    return response;
+}
+
 SolveReport StructuralSolver::solveLevel(const material::TimeStep& step,
                                          const InterfaceLoads& interface, double loadFactor)
 {

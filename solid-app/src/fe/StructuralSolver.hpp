@@ -143,6 +143,21 @@ public:
     void acceptLevel();
     // Back to the last accepted state (e.g. after a failed coupling level).
     void rejectLevel();
+
+    // True for a linear problem (small strain, law linear in the strain): the displacement is
+    // affine in the loads at a fixed level, so interfaceResponse() applies.
+    bool linearInLoads() const { return linearProblem_; }
+    // The wetted nodes' displacement change under interface load changes, with the tangent of
+    // the last converged solve's level: column j is P K^-1 P^T loadChanges.col(j) [m] for the
+    // nodal load change [N] in column j (3 per wetted node, wettedNodeCoordinates() order).
+    // No residual assembly and no state change: solve() and acceptLevel() see nothing of it.
+    // Each column's linear solve stops at |K x - b| <= relativeTolerance |b| (CG on a stale
+    // factorization; a current one solves exactly): relativeTolerance in (0, 1), e.g. 1e-2 for
+    // a predictor. Collective; loadChanges the same on every rank.
+    // Pre: linearInLoads() and the last solve() converged (throws std::logic_error otherwise).
+    Eigen::MatrixXd interfaceResponse(const Eigen::MatrixXd& loadChanges, double relativeTolerance);
+    // Linear solves done by interfaceResponse() since construction (columns).
+    int interfaceResponseColumns() const { return responseColumns_; }
     // This rank's part of the committed state (for a checkpoint).
     CommittedState committedState() const;
     // Collective. parts: the committedState() of every rank of the run that saved them (any
@@ -270,6 +285,7 @@ private:
     material::TimeStep offsetsStep_{-1.0, -1.0};
     int historyVersion_ = 0, offsetsVersion_ = -1; // committed history changes / offsets built
     int elementTangentAssemblies_ = 0;
+    int responseColumns_ = 0;
 
     std::vector<double> u_, uCommitted_;
     std::vector<double> fextCommitted_;
