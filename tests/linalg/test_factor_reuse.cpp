@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -192,5 +193,67 @@ TEST(FactorReuse, ResidualAllowanceStopsCgEarlier)
         }
         EXPECT_LE(std::sqrt(r2), 1e-4 * bNorm);
         EXPECT_GT(std::sqrt(r2), 1e-10 * bNorm); // it did stop early
+    }
+}
+
+// solveMany: three right-hand sides (one of them zero) give the same solutions as solve() one
+// by one, on a current factor (one solve phase for all) and on a stale one (CG in lockstep: one
+// solve phase per iteration for the unfinished columns, the same iteration counts).
+TEST(FactorReuse, SolveManyEqualsColumnByColumn)
+{
+    DirectSolverOptions options;
+    options.reuseFactorization = true;
+    options.refactorAfterIterations = 100;
+    SparseDirectSolver many(MPI_COMM_WORLD, options), single(MPI_COMM_WORLD, options);
+    for (SparseDirectSolver* s : {&many, &single})
+    {
+        Matrix m = matrix(0.1);
+        s->setPattern(n, m.rows, m.cols);
+        s->setValues(m.values);
+    }
+    constexpr int k = 3;
+    std::vector<double> b(static_cast<std::size_t>(n) * k, 0.0);
+    for (int i = 0; i < n; ++i)
+    {
+        b[i] = std::sin(0.05 * i) + 1.0;
+        b[n + i] = std::cos(0.3 * i);
+        // column 2 stays zero
+    }
+    const std::vector<double> allowances = {0.0, 1e-6, 0.0};
+    for (const double s : {0.1, 0.3}) // current factor, then stale (3x stiffer diagonal shift)
+    {
+        SCOPED_TRACE(s == 0.1 ? "current factor" : "stale factor");
+        many.setValues(matrix(s).values);
+        single.setValues(matrix(s).values);
+        const int phases = many.backSubstitutionCount();
+        std::vector<double> x = b;
+        many.solveMany(x, k, allowances);
+        std::vector<int> iterations;
+        for (int j = 0; j < k; ++j)
+        {
+            std::vector<double> column(b.begin() + j * n, b.begin() + (j + 1) * n);
+            const int before = single.reuseIterationCount();
+            single.solve(column, allowances[j]);
+            iterations.push_back(single.reuseIterationCount() - before);
+            if (rankOfWorld() == 0)
+            {
+                for (int i = 0; i < n; ++i)
+                    ASSERT_NEAR(x[j * n + i], column[i], 1e-12 * (1.0 + std::abs(column[i])))
+                        << "column " << j << " row " << i;
+            }
+        }
+        EXPECT_EQ(many.factorizationCount(), 1);
+        if (s == 0.1)
+        {
+            EXPECT_EQ(many.backSubstitutionCount() - phases, 1); // all columns in one phase
+        }
+        else
+        {
+            // lockstep: one phase to start plus one per iteration of the slowest column
+            const int slowest = *std::max_element(iterations.begin(), iterations.end());
+            EXPECT_GE(slowest, 2);
+            EXPECT_EQ(many.backSubstitutionCount() - phases, slowest);
+            EXPECT_EQ(many.reuseIterationCount(), iterations[0] + iterations[1] + iterations[2]);
+        }
     }
 }

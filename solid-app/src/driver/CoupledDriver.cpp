@@ -12,6 +12,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -120,6 +121,8 @@ struct CoupledDriver::Impl
     SecantFluidModel secant{params.secant.maxColumns, params.secant.levels};
     bool secantSamples = params.predictor == "secant" || params.secant.couplingIterations;
     std::string predictorNote; // what the level's predictor did (iteration 1's note)
+    // wall seconds of the last solveSecantModel() in solid solves and in response columns
+    double secantSolveSeconds = 0.0, secantResponseSeconds = 0.0, secantAssemblySeconds = 0.0;
     double dtLast = 0.0;
     double lastFirstResidual = 0.0; // of the last accepted level [m] (0: none yet)
     mapping::Values nodalDisplacement, pointDisplacement, nodalForceRows; // rank 0 buffers
@@ -513,11 +516,20 @@ CoupledDriver::Impl::solveSecantModel(LevelRecord& record, SecantFluidModel::Bas
     columns.resize(count);
     MPI_Bcast(columns.data(), count, MPI_INT, 0, comm);
     const auto t0 = Clock::now();
+    secantSolveSeconds = secantResponseSeconds = secantAssemblySeconds = 0.0;
     const auto solveSolid = [&](const Eigen::VectorXd& load)
     {
+        const auto start = Clock::now();
+        struct AddTime
+        {
+            double& total;
+            Clock::time_point t0;
+            ~AddTime() { total += secondsSince(t0); }
+        } addTime{secantSolveSeconds, start};
         const auto report = solid.solve({record.time, record.dt},
                                         {std::vector<double>(load.data(), load.data() + n)});
         record.newtonIterations += report.newtonIterations;
+        secantAssemblySeconds += report.assemblySeconds;
         if (!report.converged)
             throw std::runtime_error(report.message);
         return toVector(solid.wettedNodeDisplacements());
@@ -528,7 +540,13 @@ CoupledDriver::Impl::solveSecantModel(LevelRecord& record, SecantFluidModel::Bas
     if (base == SecantFluidModel::Base::Accepted && params.secant.responseTolerance > 0.0 &&
         solid.linearInLoads())
         respond = [&](const Eigen::MatrixXd& loadChanges)
-        { return solid.interfaceResponse(loadChanges, params.secant.responseTolerance); };
+        {
+            const auto start = Clock::now();
+            Eigen::MatrixXd answers =
+                solid.interfaceResponse(loadChanges, params.secant.responseTolerance);
+            secantResponseSeconds += secondsSince(start);
+            return answers;
+        };
     struct AddTime
     {
         double& total;
@@ -557,9 +575,10 @@ std::optional<LevelAttempt> CoupledDriver::Impl::predictSecant(LevelRecord& reco
     {
         iterate = prediction->displacement;
         std::ostringstream note;
-        note << "secant predictor (" << prediction->columns << " columns, "
-             << prediction->solidSolves << " solid solves, " << prediction->responseColumns
-             << " response columns)";
+        note << std::setprecision(3) << "secant predictor (" << prediction->columns
+             << " columns; " << prediction->solidSolves << " solid solves " << secantSolveSeconds
+             << " s (assembly " << secantAssemblySeconds << " s), " << prediction->responseColumns << " response columns "
+             << secantResponseSeconds << " s)";
         predictorNote = note.str();
     }
     else if (twoLevels)

@@ -18,7 +18,8 @@
 // other mixes. The predictor solves the solid at the new time coupled to the model. The solid
 // is affine in its loads at a fixed level (small strain, law linear in the strain): u(c) = b + Z c
 // with b = S(F_n), Z_i = S(F_n + W_i) - b, so c solves the small system
-// (I - V^+ Z) c = V^+ (b - u_n). It costs 1 + columns solid re-solves and no fluid solve. Where
+// (I - V^+ Z) c = V^+ (b - u_n). It costs 1 + columns solid re-solves and no fluid solve, or, with
+// respond (Z = A W, the solid's linear response), one solve and one linear solve per column. Where
 // the loads depend on the interface linearly within the span of V, it is the level's exact
 // coupled solution.
 #pragma once

@@ -822,13 +822,14 @@ Eigen::MatrixXd StructuralSolver::interfaceResponse(const Eigen::MatrixXd& loadC
     if (!(relativeTolerance > 0.0 && relativeTolerance < 1.0))
         throw std::invalid_argument(
             "StructuralSolver::interfaceResponse: relativeTolerance must be in (0, 1)");
-    Eigen::MatrixXd response = Eigen::MatrixXd::Zero(loadChanges.rows(), loadChanges.cols());
-    std::vector<double> rhs(numFree_);
-    const double start = MPI_Wtime();
-    for (Eigen::Index j = 0; j < loadChanges.cols(); ++j)
+    // the load changes on the free dofs, column-major (rank 0 holds them: the others' part of
+    // a summed right-hand side would be zero)
+    const int columns = static_cast<int>(loadChanges.cols());
+    const std::size_t free = static_cast<std::size_t>(numFree_);
+    std::vector<double> rhs(rank_ == 0 ? free * columns : 0, 0.0);
+    std::vector<double> allowances(columns, 0.0);
+    for (int j = 0; j < columns; ++j)
     {
-        // the load change on the free dofs (rank 0 holds it; the others add zeros)
-        std::fill(rhs.begin(), rhs.end(), 0.0);
         double norm2 = 0.0;
         for (Eigen::Index k = 0; k < wetted; ++k)
             for (int i = 0; i < 3; ++i)
@@ -839,22 +840,25 @@ Eigen::MatrixXd StructuralSolver::interfaceResponse(const Eigen::MatrixXd& loadC
                 const double f = loadChanges(3 * k + i, j);
                 norm2 += f * f;
                 if (rank_ == 0)
-                    rhs[eq] = f;
+                    rhs[free * j + eq] = f;
             }
         if (!std::isfinite(norm2))
             throw std::runtime_error("StructuralSolver::interfaceResponse: non-finite loads");
-        if (norm2 == 0.0)
-            continue;
-        linear_->solveSummedRhs(rhs, relativeTolerance * std::sqrt(norm2));
-        ++responseColumns_;
+        allowances[j] = relativeTolerance * std::sqrt(norm2);
+    }
+    const double start = MPI_Wtime();
+    linear_->solveMany(rhs, columns, allowances);
+    linear_->broadcastFromRoot(rhs);
+    responseColumns_ += columns;
+    Eigen::MatrixXd response = Eigen::MatrixXd::Zero(loadChanges.rows(), columns);
+    for (int j = 0; j < columns; ++j)
         for (Eigen::Index k = 0; k < wetted; ++k)
             for (int i = 0; i < 3; ++i)
             {
                 const int eq = equation_[3 * wettedNodes_[k] + i];
                 if (eq >= 0)
-                    response(3 * k + i, j) = rhs[eq];
+                    response(3 * k + i, j) = rhs[free * j + eq];
             }
-    }
     linearSeconds_ += MPI_Wtime() - start;
     return response;
 }

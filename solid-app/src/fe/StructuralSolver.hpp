@@ -153,7 +153,9 @@ public:
     // No residual assembly and no state change: solve() and acceptLevel() see nothing of it.
     // Each column's linear solve stops at |K x - b| <= relativeTolerance |b| (CG on a stale
     // factorization; a current one solves exactly): relativeTolerance in (0, 1), e.g. 1e-2 for
-    // a predictor. Collective; loadChanges the same on every rank.
+    // a predictor. All columns share each MUMPS solve phase (linalg::SparseDirectSolver::
+    // solveMany: the factor is read once per CG iteration, not once per column).
+    // Collective; loadChanges the same on every rank.
     // Pre: linearInLoads() and the last solve() converged (throws std::logic_error otherwise).
     Eigen::MatrixXd interfaceResponse(const Eigen::MatrixXd& loadChanges, double relativeTolerance);
     // Linear solves done by interfaceResponse() since construction (columns).

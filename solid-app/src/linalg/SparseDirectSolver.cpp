@@ -897,20 +897,26 @@ bool SparseDirectSolver::solveWithStaleFactor(std::vector<double>& b, double res
 
 void SparseDirectSolver::backSubstitute(std::vector<double>& rhsAndSolution)
 {
-    PhaseTimer timer{stats_.solveSeconds, stats_.solveCpuSeconds};
-    DMUMPS_STRUC_C& id = handle_->id;
     int sizeOk = 1;
     if (rankOf(comm_) == 0)
-    {
         sizeOk = static_cast<int>(rhsAndSolution.size()) == n_;
-        id.rhs = rhsAndSolution.data();
-        id.nrhs = 1;
-        id.lrhs = n_;
-    }
     MPI_Bcast(&sizeOk, 1, MPI_INT, 0, comm_);
     if (!sizeOk)
         throw std::invalid_argument("SparseDirectSolver::solve: rhs size differs from n = " +
                                     std::to_string(n_));
+    backSubstitute(rhsAndSolution.data(), 1);
+}
+
+void SparseDirectSolver::backSubstitute(double* rhsAndSolutions, int columns)
+{
+    PhaseTimer timer{stats_.solveSeconds, stats_.solveCpuSeconds};
+    DMUMPS_STRUC_C& id = handle_->id;
+    if (rankOf(comm_) == 0)
+    {
+        id.rhs = rhsAndSolutions;
+        id.nrhs = columns;
+        id.lrhs = n_;
+    }
     id.job = jobSolve;
     dmumps_c(&id);
     ++backSubstitutions_;
@@ -919,6 +925,158 @@ void SparseDirectSolver::backSubstitute(std::vector<double>& rhsAndSolution)
         throw std::runtime_error(
             "SparseDirectSolver solve: MUMPS INFOG(1) = " + std::to_string(id.infog[0]) + ": " +
             meaning(id.infog[0], id.infog[1]));
+}
+
+void SparseDirectSolver::solveMany(std::vector<double>& rhsAndSolutions, int columns,
+                                   const std::vector<double>& residualAllowances)
+{
+    const bool root = rankOf(comm_) == 0;
+    int sizeOk = columns >= 0 && static_cast<int>(residualAllowances.size()) == columns;
+    if (root)
+        sizeOk = sizeOk && rhsAndSolutions.size() ==
+                               static_cast<std::size_t>(n_) * static_cast<std::size_t>(columns);
+    MPI_Bcast(&sizeOk, 1, MPI_INT, 0, comm_);
+    if (!sizeOk)
+        throw std::invalid_argument("SparseDirectSolver::solveMany: expected n x columns rhs "
+                                    "values on rank 0 and one allowance per column");
+    if (columns == 0)
+        return;
+    if (options_.reuseFactorization && options_.symmetric && factorized_ && !refreshFactor_)
+    {
+        int local[2] = {patternChanged_ ? 1 : 0, valuesChanged_ ? 1 : 0};
+        int global[2];
+        MPI_Allreduce(local, global, 2, MPI_INT, MPI_MAX, comm_);
+        if (!global[0] && global[1] &&
+            solveManyWithStaleFactor(rhsAndSolutions, columns, residualAllowances))
+            return;
+    }
+    refreshFactor_ = false;
+    factorize();
+    if (stats_.lowRankActive || options_.checkResidual)
+    {
+        // one by one, each checked and refined (solve() on a current factor)
+        std::vector<double> column;
+        for (int j = 0; j < columns; ++j)
+        {
+            if (root)
+                column.assign(rhsAndSolutions.begin() + static_cast<std::ptrdiff_t>(j) * n_,
+                              rhsAndSolutions.begin() + static_cast<std::ptrdiff_t>(j + 1) * n_);
+            solve(column, residualAllowances[j]);
+            if (root)
+                std::copy(column.begin(), column.end(),
+                          rhsAndSolutions.begin() + static_cast<std::ptrdiff_t>(j) * n_);
+        }
+        return;
+    }
+    backSubstitute(root ? rhsAndSolutions.data() : nullptr, columns);
+    solveCount_ += columns;
+}
+
+bool SparseDirectSolver::solveManyWithStaleFactor(std::vector<double>& b, int columns,
+                                                  const std::vector<double>& residualAllowances)
+{
+    // Preconditioned CG on every column, in lockstep: the stale factor is applied to the
+    // unfinished columns in one solve phase per iteration.
+    const bool root = rankOf(comm_) == 0;
+    const std::size_t n = static_cast<std::size_t>(n_);
+    const auto col = [n](std::vector<double>& v, int j) { return v.data() + n * j; };
+    std::vector<double> x(n * columns, 0.0), r(root ? b : std::vector<double>(n * columns, 0.0));
+    std::vector<double> z, p(n * columns, 0.0), q, work(n), product;
+    std::vector<double> rz(columns), target(columns);
+    std::vector<int> active, iterations(columns, 0);
+    auto dotRoot = [&](const double* u, const double* v)
+    {
+        double sum = 0.0;
+        if (root)
+            for (std::size_t i = 0; i < n; ++i)
+                sum += u[i] * v[i];
+        return sum;
+    };
+    // norms of the rhs (rank 0's, broadcast)
+    std::vector<double> norms(columns);
+    for (int j = 0; j < columns; ++j)
+        norms[j] = std::sqrt(dotRoot(col(r, j), col(r, j)));
+    MPI_Bcast(norms.data(), columns, MPI_DOUBLE, 0, comm_);
+    for (int j = 0; j < columns; ++j)
+    {
+        if (!std::isfinite(norms[j]))
+            return false;
+        target[j] = std::max(options_.reuseTolerance * norms[j], residualAllowances[j]);
+        if (norms[j] > residualAllowances[j])
+            active.push_back(j); // else x = 0 is within the allowance
+    }
+    // z = M^-1 r for the active columns, one solve phase
+    const auto precondition = [&](const std::vector<int>& which)
+    {
+        z.assign(n * which.size(), 0.0);
+        if (root)
+            for (std::size_t a = 0; a < which.size(); ++a)
+                std::copy(col(r, which[a]), col(r, which[a]) + n, z.data() + n * a);
+        backSubstitute(root ? z.data() : nullptr, static_cast<int>(which.size()));
+    };
+    precondition(active);
+    for (std::size_t a = 0; a < active.size(); ++a)
+    {
+        const int j = active[a];
+        if (root)
+            std::copy(z.data() + n * a, z.data() + n * (a + 1), col(p, j));
+        rz[j] = dotRoot(col(r, j), z.data() + n * a);
+    }
+    MPI_Bcast(rz.data(), columns, MPI_DOUBLE, 0, comm_);
+    int maxIterations = 0;
+    for (int it = 1; !active.empty(); ++it)
+    {
+        if (it > options_.reuseMaxIterations)
+            return false;
+        std::vector<int> unfinished;
+        for (const int j : active)
+        {
+            std::copy(col(p, j), col(p, j) + n, work.begin());
+            multiply(work, product); // broadcasts work from rank 0, product on rank 0
+            double pq = dotRoot(col(p, j), product.data());
+            MPI_Bcast(&pq, 1, MPI_DOUBLE, 0, comm_);
+            if (!(pq > 0.0) || !std::isfinite(pq))
+                return false; // indefinite or broken down: factorize instead
+            const double alpha = rz[j] / pq;
+            if (root)
+                for (std::size_t i = 0; i < n; ++i)
+                {
+                    col(x, j)[i] += alpha * col(p, j)[i];
+                    col(r, j)[i] -= alpha * product[i];
+                }
+            double rNorm = std::sqrt(dotRoot(col(r, j), col(r, j)));
+            MPI_Bcast(&rNorm, 1, MPI_DOUBLE, 0, comm_);
+            iterations[j] = it;
+            if (rNorm > target[j])
+                unfinished.push_back(j);
+        }
+        maxIterations = std::max(maxIterations, it);
+        active = unfinished;
+        if (active.empty())
+            break;
+        precondition(active);
+        std::vector<double> rzNext(columns, 0.0);
+        for (std::size_t a = 0; a < active.size(); ++a)
+            rzNext[active[a]] = dotRoot(col(r, active[a]), z.data() + n * a);
+        MPI_Bcast(rzNext.data(), columns, MPI_DOUBLE, 0, comm_);
+        for (std::size_t a = 0; a < active.size(); ++a)
+        {
+            const int j = active[a];
+            const double beta = rzNext[j] / rz[j];
+            rz[j] = rzNext[j];
+            if (root)
+                for (std::size_t i = 0; i < n; ++i)
+                    col(p, j)[i] = z[n * a + i] + beta * col(p, j)[i];
+        }
+    }
+    if (root)
+        b = x;
+    reusedSolves_ += columns;
+    solveCount_ += columns;
+    for (const int its : iterations)
+        reuseIterations_ += its;
+    refreshFactor_ = maxIterations > options_.refactorAfterIterations;
+    return true;
 }
 
 void SparseDirectSolver::solveSummedRhs(std::vector<double>& rhsAndSolution,

@@ -183,6 +183,17 @@ public:
     // current factor ignore it. A zero rhs gives x = 0 without a factorization.
     void solve(std::vector<double>& rhsAndSolution, double residualAllowance = 0.0);
 
+    // Several right-hand sides at once: rank 0 passes `columns` rhs of size n, column-major
+    // (size n x columns), and gets the solutions in place; the other ranks' argument is
+    // ignored. With a current full-rank factor one MUMPS solve phase serves all columns (the
+    // factor is read once); with a stale one (reuseFactorization) CG runs on every column in
+    // lockstep, the factor applied to all unfinished columns in one solve phase. A column
+    // fails over to a refactorization as in solve(); a BLR factor or checkResidual solves the
+    // columns one by one (with their refinement). residualAllowances: one per column (>= 0,
+    // the same on every rank), as in solve().
+    void solveMany(std::vector<double>& rhsAndSolutions, int columns,
+                   const std::vector<double>& residualAllowances);
+
     // Distributed-assembly helper: every rank passes its partial rhs (size n, its own
     // elements' contributions); they are summed onto rank 0, solved, and the solution
     // is returned on EVERY rank. residualAllowance as in solve().
@@ -218,6 +229,11 @@ public:
 
 private:
     void backSubstitute(std::vector<double>& rhsAndSolution); // rank 0 data, collective
+    // the same for `columns` right-hand sides, column-major (one MUMPS solve phase)
+    void backSubstitute(double* rhsAndSolutions, int columns);
+    // solveMany() on a stale factor; false (b untouched) when a column misses the tolerance
+    bool solveManyWithStaleFactor(std::vector<double>& b, int columns,
+                                  const std::vector<double>& residualAllowances);
     // y = A x with the current values (x significant on rank 0; y summed onto rank 0).
     void multiply(std::vector<double>& x, std::vector<double>& y) const;
     // CG preconditioned by the stale factorization; false (b untouched) when it misses the
