@@ -11,7 +11,10 @@
 #                                           relaxed = elastic, long-term modulus (t -> infinity);
 #                                           both = baseline + viscoelastic; elastic = baseline +
 #                                           relaxed (the two steady bounds, no time stepping)
-#   --np-fluid N --np-solid M               ranks of each program (default 2 and 1)
+#   --np-fluid N --np-solid M               ranks of each program (default 2 and 2: the two
+#                                           programs take turns, so on a 2-core machine the
+#                                           solid's phases use both cores; README.md,
+#                                           "The solid's share")
 #   --launch mpmd|port                      one mpirun A : B (default) or two + ompi-server
 #   --tc T --cli C                          section thickness ratio and design lift (0.12, 0.5)
 #   --end SECONDS                           last time level of the viscoelastic run (3600)
@@ -35,7 +38,7 @@ set -euo pipefail
 : "${FSI_ROOT:?run through ./scripts/run cases/hydrofoil (FSI_ROOT unset)}"
 source "$FSI_ROOT/scripts/env.sh"
 
-preset=coarse material=both npf=2 nps=1 launch=mpmd tc=0.12 cli=0.5 end="" timeout=900 meshFrom="" restart=0
+preset=coarse material=both npf=2 nps=2 launch=mpmd tc=0.12 cli=0.5 end="" timeout=900 meshFrom="" restart=0
 flow=laminar scheme=upwind
 die() { echo "error: hydrofoil/run.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
