@@ -215,3 +215,41 @@ TEST(InterfaceResponse, NeedsALinearProblemAndAConvergedSolve)
     EXPECT_FALSE(finite.linearInLoads());
     EXPECT_THROW(finite.interfaceResponse(loadChanges(n), 1e-2), std::logic_error);
 }
+
+// The level's earlier solves are reused: a re-solve whose load change lies in the span of the
+// response columns' loads is found by projection, so CG on the stale factor needs fewer
+// iterations than without those columns, and the answer is the same.
+TEST(InterfaceResponse, LaterSolvesOfTheLevelStartFromItsEarlierOnes)
+{
+    const ResponseCase c(0.0); // CG on the level-0 factor throughout
+    std::vector<double> displacement[2];
+    int iterations[2] = {0, 0};
+    for (const bool withColumns : {false, true})
+    {
+        fe::StructuralSolver solver(MPI_COMM_WORLD, c.mesh, *c.law, c.problem);
+        const std::size_t n = solver.wettedNodes().size();
+        c.solveLevelOne(solver, n);
+        const Eigen::MatrixXd columns = loadChanges(n);
+        if (withColumns)
+            solver.interfaceResponse(columns, 1e-2);
+        fe::InterfaceLoads next = tipLoad(n, -11, 1);
+        for (std::size_t i = 0; i < 3 * n; ++i)
+            next.forces[i] += 0.7 * columns(static_cast<Eigen::Index>(i), 0) -
+                              0.2 * columns(static_cast<Eigen::Index>(i), 1);
+        const int before = solver.linearSolver().reuseIterationCount();
+        const auto report = solver.solve({0.5, 0.5}, next);
+        ASSERT_TRUE(report.converged);
+        EXPECT_NE(report.message.find("linear update"), std::string::npos) << report.message;
+        iterations[withColumns] = solver.linearSolver().reuseIterationCount() - before;
+        displacement[withColumns] = solver.displacement();
+    }
+    EXPECT_GE(iterations[0], 2);
+    EXPECT_LT(iterations[1], iterations[0]);
+    double diff = 0, scale = 0;
+    for (std::size_t i = 0; i < displacement[0].size(); ++i)
+    {
+        diff = std::max(diff, std::abs(displacement[1][i] - displacement[0][i]));
+        scale = std::max(scale, std::abs(displacement[0][i]));
+    }
+    EXPECT_LT(diff, 1e-8 * scale);
+}

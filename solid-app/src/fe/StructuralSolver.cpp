@@ -427,6 +427,7 @@ bool StructuralSolver::linearTangentFromParts()
     for (std::size_t k = 0; k < values.size(); ++k)
         values[k] = lambda * lambdaPart_[k] + mu * muPart_[k];
     linear_->setValues(std::move(values));
+    ++tangentVersion_;
     muValues_ = mu;
     const double drift = problem_.refactorShearDrift;
     if (factorizationsSeen_ > 0 && drift > 0.0 && std::abs(mu - muFactorized_) > drift * mu)
@@ -548,7 +549,10 @@ bool StructuralSolver::assemble(const std::vector<double>& u, bool withMatrix,
         MPI_Allreduce(MPI_IN_PLACE, fint.data(), static_cast<int>(fint.size()), MPI_DOUBLE, MPI_SUM,
                       comm_);
     if (withMatrix)
+    {
         linear_->setValues(values_);
+        ++tangentVersion_;
+    }
     return true;
 }
 
@@ -756,7 +760,7 @@ SolveReport StructuralSolver::solve(const material::TimeStep& step, const Interf
 // Newton then runs.
 bool StructuralSolver::linearUpdate(const std::vector<double>& fTarget, SolveReport& report)
 {
-    std::vector<double> du(numFree_, 0.0);
+    std::vector<double> rhs(numFree_, 0.0); // replicated: fTarget and fintConverged_ are
     double change2 = 0.0, fe0 = 0.0, fi0 = 0.0;
     for (int dof = 0; dof < numDofs(); ++dof)
     {
@@ -767,13 +771,26 @@ bool StructuralSolver::linearUpdate(const std::vector<double>& fTarget, SolveRep
             continue;
         const double d = fTarget[dof] - fintConverged_[dof];
         change2 += d * d;
-        if (rank_ == 0)
-            du[eq] = d;
+        rhs[eq] = d;
     }
     if (!std::isfinite(change2) || !std::isfinite(fi0))
         return false; // Newton diagnoses non-finite loads
     const double linearStart = MPI_Wtime();
-    linear_->solveSummedRhs(du, linearSolveAllowance(std::max(std::sqrt(fe0), std::sqrt(fi0))));
+    // on a stale factor: the part of the rhs in the span of this level's earlier solves is
+    // solved by projection, CG gets the rest (a current factor solves exactly in one phase)
+    const bool stale = linear_->factorIsStale();
+    std::vector<double> du(numFree_, 0.0), remainder = rhs;
+    if (stale)
+        projectOnLevelSolves(remainder, du);
+    std::vector<double> correction(numFree_, 0.0);
+    if (rank_ == 0)
+        correction = remainder;
+    linear_->solveSummedRhs(correction,
+                            linearSolveAllowance(std::max(std::sqrt(fe0), std::sqrt(fi0))));
+    for (int eq = 0; eq < numFree_; ++eq)
+        du[eq] += correction[eq];
+    if (stale)
+        rememberLevelSolve(du);
     linearSeconds_ += MPI_Wtime() - linearStart;
     std::vector<double> u = u_, fint;
     for (int dof = 0; dof < numDofs(); ++dof)
@@ -806,6 +823,64 @@ bool StructuralSolver::linearUpdate(const std::vector<double>& fTarget, SolveRep
     report.residuals = {norm};
     report.message = "linear update of the last converged solve (same tangent, new loads)";
     return true;
+}
+
+void StructuralSolver::rememberLevelSolve(std::vector<double> x)
+{
+    if (levelSolvesVersion_ != tangentVersion_)
+    {
+        levelSolutions_.clear();
+        levelLoads_.clear();
+        levelSolvesVersion_ = tangentVersion_;
+    }
+    std::vector<double> b; // K x, exactly (a solve's rhs is met only to its tolerance)
+    linear_->multiplyAll(x, b);
+    // K-orthonormalize against the kept pairs
+    const auto dot = [](const std::vector<double>& a, const std::vector<double>& c)
+    { return std::inner_product(a.begin(), a.end(), c.begin(), 0.0); };
+    const double start = std::sqrt(std::abs(dot(x, b)));
+    for (std::size_t j = 0; j < levelSolutions_.size(); ++j)
+    {
+        const double c = dot(levelSolutions_[j], b);
+        for (std::size_t i = 0; i < x.size(); ++i)
+        {
+            x[i] -= c * levelSolutions_[j][i];
+            b[i] -= c * levelLoads_[j][i];
+        }
+    }
+    const double energy = dot(x, b);
+    // nothing new (within 1e-3 of its energy norm), or lost to rounding
+    if (!(energy > 1e-6 * start * start) || !std::isfinite(energy))
+        return;
+    const double scale = 1.0 / std::sqrt(energy);
+    for (std::size_t i = 0; i < x.size(); ++i)
+    {
+        x[i] *= scale;
+        b[i] *= scale;
+    }
+    if (static_cast<int>(levelSolutions_.size()) >= kLevelSolvesKept)
+    {
+        levelSolutions_.erase(levelSolutions_.begin()); // the oldest
+        levelLoads_.erase(levelLoads_.begin());
+    }
+    levelSolutions_.push_back(std::move(x));
+    levelLoads_.push_back(std::move(b));
+}
+
+void StructuralSolver::projectOnLevelSolves(std::vector<double>& rhs, std::vector<double>& x) const
+{
+    if (levelSolvesVersion_ != tangentVersion_)
+        return; // the matrix changed since they were kept
+    for (std::size_t j = 0; j < levelSolutions_.size(); ++j)
+    {
+        const double c = std::inner_product(levelSolutions_[j].begin(), levelSolutions_[j].end(),
+                                            rhs.begin(), 0.0);
+        for (std::size_t i = 0; i < rhs.size(); ++i)
+        {
+            x[i] += c * levelSolutions_[j][i];
+            rhs[i] -= c * levelLoads_[j][i];
+        }
+    }
 }
 
 Eigen::MatrixXd StructuralSolver::interfaceResponse(const Eigen::MatrixXd& loadChanges,
@@ -847,9 +922,16 @@ Eigen::MatrixXd StructuralSolver::interfaceResponse(const Eigen::MatrixXd& loadC
         allowances[j] = relativeTolerance * std::sqrt(norm2);
     }
     const double start = MPI_Wtime();
+    const bool stale = linear_->factorIsStale();
     linear_->solveMany(rhs, columns, allowances);
     linear_->broadcastFromRoot(rhs);
     responseColumns_ += columns;
+    // on a stale factor the columns' answers serve the level's later solves
+    // (projectOnLevelSolves)
+    for (int j = 0; stale && j < columns; ++j)
+        rememberLevelSolve(std::vector<double>(
+            rhs.begin() + static_cast<std::ptrdiff_t>(free * j),
+            rhs.begin() + static_cast<std::ptrdiff_t>(free * (j + 1))));
     Eigen::MatrixXd response = Eigen::MatrixXd::Zero(loadChanges.rows(), columns);
     for (int j = 0; j < columns; ++j)
         for (Eigen::Index k = 0; k < wetted; ++k)

@@ -219,6 +219,15 @@ private:
     SolveReport solveLevel(const material::TimeStep& step, const InterfaceLoads& interface,
                            double loadFactor);
     bool linearUpdate(const std::vector<double>& fTarget, SolveReport& report);
+    // Linear problem: the level's earlier linear solutions x (free dofs, replicated) with K x
+    // (one product each), K-orthonormalized, at most kLevelSolvesKept (the oldest dropped),
+    // forgotten when the tangent changes. A new rhs is first projected on them (Galerkin:
+    // x += U U^T rhs, rhs -= K U U^T rhs) and only the rest goes to the linear solver: CG on
+    // a stale factor starts closer. Used on a stale factor only (a current one solves exactly
+    // in one phase, and K x of a stiff problem carries rounding of eps cond(K)). Collective.
+    void rememberLevelSolve(std::vector<double> x);
+    void projectOnLevelSolves(std::vector<double>& rhs, std::vector<double>& x) const;
+    static constexpr int kLevelSolvesKept = 12;
     bool assemble(const std::vector<double>& u, bool withMatrix, std::vector<double>& fint);
     // Linear problem, isotropic law: values_ = lambda K_lambda + mu K_mu for step_ (the parts
     // assembled at the first call). False when the law's tangent is not isotropic (then the
@@ -288,6 +297,9 @@ private:
     int historyVersion_ = 0, offsetsVersion_ = -1; // committed history changes / offsets built
     int elementTangentAssemblies_ = 0;
     int responseColumns_ = 0;
+    int tangentVersion_ = 0;          // counts linear_->setValues() calls
+    int levelSolvesVersion_ = -1;     // tangentVersion_ of levelSolutions_
+    std::vector<std::vector<double>> levelSolutions_, levelLoads_; // rememberLevelSolve()
 
     std::vector<double> u_, uCommitted_;
     std::vector<double> fextCommitted_;

@@ -825,6 +825,20 @@ void SparseDirectSolver::multiply(std::vector<double>& x, std::vector<double>& y
         MPI_Reduce(y.data(), nullptr, n_, MPI_DOUBLE, MPI_SUM, 0, comm_);
 }
 
+bool SparseDirectSolver::factorIsStale() const
+{
+    int local = (!factorized_ || patternChanged_ || valuesChanged_) ? 1 : 0, global = 0;
+    MPI_Allreduce(&local, &global, 1, MPI_INT, MPI_MAX, comm_);
+    return global != 0;
+}
+
+void SparseDirectSolver::multiplyAll(std::vector<double>& x, std::vector<double>& y) const
+{
+    x.resize(static_cast<std::size_t>(n_));
+    multiply(x, y);
+    broadcastFromRoot(y);
+}
+
 bool SparseDirectSolver::solveWithStaleFactor(std::vector<double>& b, double residualAllowance)
 {
     const bool root = rankOf(comm_) == 0;

@@ -204,6 +204,14 @@ public:
     // every rank calls it.
     void factorizeAtNextSolve() { refreshFactor_ = true; }
 
+    // True when the values changed since the last factorization (collective): a solve() now
+    // runs CG on the stale factor (reuseFactorization) or factorizes first.
+    bool factorIsStale() const;
+
+    // y = A x with the current values (collective): x significant on rank 0 (broadcast to the
+    // others, so it is resized there), y returned on every rank.
+    void multiplyAll(std::vector<double>& x, std::vector<double>& y) const;
+
     // Broadcast a rank-0 vector to all ranks (resized on the others).
     void broadcastFromRoot(std::vector<double>& vector) const;
 
