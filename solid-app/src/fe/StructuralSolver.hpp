@@ -32,7 +32,8 @@
 // point's stress at zero strain (built once per level: 6 doubles per integration point), not
 // the law. A shear modulus that drifted more than ProblemDefinition::refactorShearDrift from the
 // factorized one is refactorized at the level's first solve (its re-solves are then one
-// back-substitution each).
+// back-substitution each). On a stale factor a re-solve first projects its right-hand side on
+// the level's earlier solutions (and interfaceResponse() columns), so CG starts closer.
 #pragma once
 #include "fe/ElementKernel.hpp"
 #include "fe/Settings.hpp"
