@@ -131,6 +131,10 @@ Foam::fluidSolidCoupling::fluidSolidCoupling
         << " kg/m^3; mesh limits: non-orthogonality " << maxNonOrth_
         << " deg, skewness " << maxSkewness_ << "; " << warmStart_.describe().c_str()
         << nl << endl;
+    // both solve-control blocks are checked at start-up, whatever the mode (bad input stops
+    // before anything runs)
+    controls("rigid");
+    controls("coupled");
 }
 
 
@@ -230,7 +234,8 @@ void Foam::fluidSolidCoupling::answerSolve
             << " fsiDict coupled.residualDrop and coupled.forceTolerance are not used,"
             << " coupled.maxIterations " << own.maxIterations << " stays the cap and"
             << " coupled.stableIterations " << own.stableIterations << " the number of"
-            << " consecutive iterations the estimate must hold" << endl;
+            << " consecutive iterations the estimate must hold, coupled.oscillationWindow "
+            << own.oscillationWindow << " its window against turning points" << endl;
         accuracyAnnounced_ = true;
     }
     startFlow(c);
@@ -321,6 +326,14 @@ Foam::fluidSolidCoupling::SolveControls Foam::fluidSolidCoupling::controls
     c.residualRequired = d.getOrDefault<bool>("residualRequired", true);
     c.estimateError = d.getOrDefault<bool>("estimateForceError", false);
     c.stableIterations = d.getOrDefault<label>("stableIterations", 1);
+    c.oscillationWindow = d.getOrDefault<label>("oscillationWindow", 0);
+    if (c.oscillationWindow != 0 && (c.oscillationWindow < 3 || c.oscillationWindow > 1000))
+    {
+        FatalIOErrorInFunction(dict_)
+            << "system/fsiDict: " << subDictName << ".oscillationWindow "
+            << c.oscillationWindow << " is invalid: 0 (off) or 3..1000 SIMPLE iterations"
+            << " (about one period of the force's oscillation)" << exit(FatalIOError);
+    }
     if
     (
         c.maxIterations < 1 || c.minIterations < 1 || c.minIterations > c.maxIterations
@@ -356,8 +369,9 @@ Foam::fluidSolidCoupling::SolveControls Foam::fluidSolidCoupling::askedControls
     c.residualDrop = solve.residualDrop;
     c.residualRequired = solve.residualDrop > 0;
     c.estimateError = true;
-    // The fluid's own guard against a pause of an oscillating force (fsiDict coupled)
+    // The fluid's own guards against a pause of an oscillating force (fsiDict coupled)
     c.stableIterations = own.stableIterations;
+    c.oscillationWindow = own.oscillationWindow;
     return c;
 }
 

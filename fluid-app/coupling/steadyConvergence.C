@@ -40,6 +40,30 @@ double SteadyConvergence::estimatedForceError(const std::vector<double>& changes
     return changes[m - 1] * rho / (1 - rho);
 }
 
+double SteadyConvergence::oscillationBand(const std::vector<double>& forces)
+{
+    const std::size_t m = forces.size() / 3;
+    double band2 = 0;
+    for (std::size_t i = 0; i < 3 && m >= 3; ++i)
+    {
+        bool reverses = false;
+        double low = forces[i], high = forces[i], previousChange = 0;
+        for (std::size_t k = 1; k < m; ++k)
+        {
+            const double value = forces[3 * k + i];
+            const double change = value - forces[3 * (k - 1) + i];
+            reverses = reverses || change * previousChange < 0;
+            if (change != 0)
+                previousChange = change;
+            low = std::min(low, value);
+            high = std::max(high, value);
+        }
+        if (reverses)
+            band2 += 0.25 * (high - low) * (high - low);
+    }
+    return std::sqrt(band2);
+}
+
 bool SteadyConvergence::residualsMet(double residualU, double residualP) const
 {
     if (!controls_.residualRequired)
@@ -60,7 +84,17 @@ bool SteadyConvergence::forceMet(int iteration, const double force[3])
     if (iteration == 1)
         return false;
     forceChanges_.push_back(change);
-    const double error = controls_.estimateError ? estimatedForceError(forceChanges_) : change;
+    double error = controls_.estimateError ? estimatedForceError(forceChanges_) : change;
+    if (controls_.estimateError && controls_.oscillationWindow > 0)
+    {
+        const std::size_t keep = 3 * static_cast<std::size_t>(controls_.oscillationWindow + 1);
+        recentForces_.insert(recentForces_.end(), force, force + 3);
+        if (recentForces_.size() > keep)
+            recentForces_.erase(recentForces_.begin(),
+                                recentForces_.begin() +
+                                    static_cast<std::ptrdiff_t>(recentForces_.size() - keep));
+        error = std::max(error, oscillationBand(recentForces_));
+    }
     const double magF = std::sqrt(force[0] * force[0] + force[1] * force[1] + force[2] * force[2]);
     return error <= controls_.forceTolerance * magF;
 }

@@ -340,6 +340,10 @@ def t_bad_case(a):
     rc, log = run([a.fluid_app, "-rigid", "-case", d], os.path.join(d, "log.bad-warm-start"))
     check(rc != 0 and "coupled.warmStart.type must be previous or secant, got 'secnt'" in log,
           "unknown coupled.warmStart.type: exit %d, message names the file's key and the choices" % rc)
+    open(fsi, "w").write(good + "\ncoupled { oscillationWindow 2; }\n")
+    rc, log = run([a.fluid_app, "-rigid", "-case", d], os.path.join(d, "log.bad-window"))
+    check(rc != 0 and "system/fsiDict: coupled.oscillationWindow 2 is invalid: 0 (off) or 3..1000" in log,
+          "coupled.oscillationWindow 2: exit %d, message names the file's key and the range" % rc)
     # The run mode is resolved once, before OpenFOAM starts (fluid-app/coupling/runMode.H).
     open(fsi, "w").write(good + "\nmode rigd;\n")
     rc, log = run([a.fluid_app, "-case", d], os.path.join(d, "log.bad-mode"))

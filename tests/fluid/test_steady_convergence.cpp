@@ -126,3 +126,49 @@ TEST(SteadyConvergence, NoForceCriterionIgnoresTheForce)
     EXPECT_FALSE(rule.update(1, 1.0, 1.0, kNoForce));
     EXPECT_TRUE(rule.update(2, 0.05, 0.05, kNoForce));
 }
+
+// A damped oscillation F_k = F* + A d^k cos(pi k / 10) (period 20 iterations): the change
+// passes through zero at every turning point, and so does the geometric estimate, which stops
+// there with the true error near the amplitude. oscillationWindow 20 (a period: a half-period
+// window can miss the reversal, since damping moves the turning points) keeps the solve going
+// until half the window's range, and with it the true error, is below the tolerance.
+TEST(SteadyConvergence, OscillationWindowDoesNotStopAtATurningPoint)
+{
+    const double target = 10.0, amplitude = 0.05, damping = 0.93, tol = 5e-5;
+    auto force = [&](int k)
+    { return target + amplitude * std::pow(damping, k) * std::cos(M_PI * k / 10.0); };
+    auto one = [](int) { return 1.0; };
+    SolveControls c;
+    c.forceTolerance = tol;
+    c.residualRequired = false;
+    c.estimateError = true;
+    const int early = stopIteration(c, 0, 0, one, force, 400);
+    ASSERT_GT(early, 0);
+    const double earlyError = std::abs(force(early) - target) / target;
+    EXPECT_GT(earlyError, 10 * tol) << "stopped at " << early; // fooled by a turning point
+
+    c.oscillationWindow = 20;
+    const int late = stopIteration(c, 0, 0, one, force, 400);
+    ASSERT_GT(late, early);
+    EXPECT_LE(std::abs(force(late) - target) / target, tol) << "stopped at " << late;
+    // and not much later than needed: the envelope A d^k meets tol |F*| at k0
+    const double k0 = std::log(tol * target / amplitude) / std::log(damping);
+    EXPECT_LT(late, k0 + 20);
+}
+
+// A monotone (geometric) convergence has no sign reversal: the window changes nothing.
+TEST(SteadyConvergence, OscillationWindowLeavesMonotoneConvergenceAlone)
+{
+    SolveControls c;
+    c.forceTolerance = 1e-3;
+    c.residualRequired = false;
+    c.estimateError = true;
+    c.oscillationWindow = 8;
+    const int k = stopIteration(
+        c, 0, 0, [](int) { return 1.0; }, [](int k) { return 10.0 + std::pow(0.5, k); });
+    EXPECT_EQ(k, 7);
+    const std::vector<double> rising = {1, 0, 0, 2, 0, 0, 2.5, 0, 0, 2.6, 0, 0};
+    EXPECT_EQ(SteadyConvergence::oscillationBand(rising), 0.0);
+    const std::vector<double> turning = {1, 0, 0, 2, 0, 0, 1.5, 0, 0};
+    EXPECT_DOUBLE_EQ(SteadyConvergence::oscillationBand(turning), 0.5);
+}
