@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 using fsi::fluid::SolveControls;
@@ -154,6 +155,12 @@ TEST(SteadyConvergence, OscillationWindowDoesNotStopAtATurningPoint)
     // and not much later than needed: the envelope A d^k meets tol |F*| at k0
     const double k0 = std::log(tol * target / amplitude) / std::log(damping);
     EXPECT_LT(late, k0 + 20);
+    c.oscillationWindow = 10; // half a period: can miss the reversal (printed, not asserted)
+    const int half = stopIteration(c, 0, 0, one, force, 400);
+    std::printf("damped oscillation, tolerance %.0e: stop at %d (error %.1e) without a window, "
+                "%d (%.1e) with window 10, %d (%.1e) with window 20\n",
+                tol, early, earlyError, half, std::abs(force(half) - target) / target, late,
+                std::abs(force(late) - target) / target);
 }
 
 // A monotone (geometric) convergence has no sign reversal: the window changes nothing.

@@ -28,6 +28,22 @@ double secondsSince(Clock::time_point t0)
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
+// Adds the wall seconds of its scope to `total` (also when the scope is left by an exception).
+struct ScopedSeconds
+{
+    double& total;
+    Clock::time_point start = Clock::now();
+    ~ScopedSeconds() { total += secondsSince(start); }
+};
+
+// Wall seconds of one solveSecantModel() (the predictor's note in coupling.csv).
+struct SecantCost
+{
+    double solveSeconds = 0.0;    // solid solves (the base, columns without a response)
+    double assemblySeconds = 0.0; // of them, element loops
+    double responseSeconds = 0.0; // response columns (StructuralSolver::interfaceResponse)
+};
+
 // The interface representation: n x 3, row-major (x, y, z per node or face). The solid's flat
 // vectors, the accelerator's 3n vectors, the wire's arrays and mapping::PointCloud share that
 // layout, so these are views, not conversions.
@@ -121,8 +137,6 @@ struct CoupledDriver::Impl
     SecantFluidModel secant{params.secant.maxColumns, params.secant.levels};
     bool secantSamples = params.predictor == "secant" || params.secant.couplingIterations;
     std::string predictorNote; // what the level's predictor did (iteration 1's note)
-    // wall seconds of the last solveSecantModel() in solid solves and in response columns
-    double secantSolveSeconds = 0.0, secantResponseSeconds = 0.0, secantAssemblySeconds = 0.0;
     double dtLast = 0.0;
     double lastFirstResidual = 0.0; // of the last accepted level [m] (0: none yet)
     mapping::Values nodalDisplacement, pointDisplacement, nodalForceRows; // rank 0 buffers
@@ -179,8 +193,10 @@ struct CoupledDriver::Impl
     LevelAttempt attemptLevel(LevelRecord& record, bool usePredictor);
     std::optional<LevelAttempt> predictFirstIterate(LevelRecord& record, bool usePredictor);
     std::optional<LevelAttempt> predictSecant(LevelRecord& record, bool twoLevels);
-    std::optional<SecantFluidModel::Prediction>
-    solveSecantModel(LevelRecord& record, SecantFluidModel::Base base, double minColumnRms);
+    std::optional<SecantFluidModel::Prediction> solveSecantModel(LevelRecord& record,
+                                                                 SecantFluidModel::Base base,
+                                                                 double minColumnRms,
+                                                                 SecantCost* cost = nullptr);
     std::optional<LevelAttempt> secantStep(LevelRecord& record, IterationLine& line);
     FluidAccuracy accuracyFor(int level, int iteration, double lastResidual,
                               bool interfaceConverged) const;
@@ -508,28 +524,21 @@ std::optional<LevelAttempt> CoupledDriver::Impl::predictFirstIterate(LevelRecord
 // degenerate. Throws std::runtime_error when a solid solve fails.
 std::optional<SecantFluidModel::Prediction>
 CoupledDriver::Impl::solveSecantModel(LevelRecord& record, SecantFluidModel::Base base,
-                                      double minColumnRms)
+                                      double minColumnRms, SecantCost* cost)
 {
     std::vector<int> columns = secant.selectColumns(base, minColumnRms);
     int count = static_cast<int>(columns.size());
     MPI_Bcast(&count, 1, MPI_INT, 0, comm);
     columns.resize(count);
     MPI_Bcast(columns.data(), count, MPI_INT, 0, comm);
-    const auto t0 = Clock::now();
-    secantSolveSeconds = secantResponseSeconds = secantAssemblySeconds = 0.0;
+    SecantCost spent;
     const auto solveSolid = [&](const Eigen::VectorXd& load)
     {
-        const auto start = Clock::now();
-        struct AddTime
-        {
-            double& total;
-            Clock::time_point t0;
-            ~AddTime() { total += secondsSince(t0); }
-        } addTime{secantSolveSeconds, start};
+        ScopedSeconds timer{spent.solveSeconds};
         const auto report = solid.solve({record.time, record.dt},
                                         {std::vector<double>(load.data(), load.data() + n)});
         record.newtonIterations += report.newtonIterations;
-        secantAssemblySeconds += report.assemblySeconds;
+        spent.assemblySeconds += report.assemblySeconds;
         if (!report.converged)
             throw std::runtime_error(report.message);
         return toVector(solid.wettedNodeDisplacements());
@@ -541,19 +550,15 @@ CoupledDriver::Impl::solveSecantModel(LevelRecord& record, SecantFluidModel::Bas
         solid.linearInLoads())
         respond = [&](const Eigen::MatrixXd& loadChanges)
         {
-            const auto start = Clock::now();
-            Eigen::MatrixXd answers =
-                solid.interfaceResponse(loadChanges, params.secant.responseTolerance);
-            secantResponseSeconds += secondsSince(start);
-            return answers;
+            ScopedSeconds timer{spent.responseSeconds};
+            return Eigen::MatrixXd(
+                solid.interfaceResponse(loadChanges, params.secant.responseTolerance));
         };
-    struct AddTime
-    {
-        double& total;
-        Clock::time_point t0;
-        ~AddTime() { total += secondsSince(t0); }
-    } addTime{summary.solidSeconds, t0};
-    return secant.predict(columns, solveSolid, base, respond);
+    ScopedSeconds solidTime{summary.solidSeconds};
+    auto prediction = secant.predict(columns, solveSolid, base, respond);
+    if (cost)
+        *cost = spent;
+    return prediction;
 }
 
 // coupling.predictor secant: the solid at the new time coupled to the secant model of the fluid
@@ -561,9 +566,10 @@ CoupledDriver::Impl::solveSecantModel(LevelRecord& record, SecantFluidModel::Bas
 std::optional<LevelAttempt> CoupledDriver::Impl::predictSecant(LevelRecord& record, bool twoLevels)
 {
     std::optional<SecantFluidModel::Prediction> prediction;
+    SecantCost cost;
     try
     {
-        prediction = solveSecantModel(record, SecantFluidModel::Base::Accepted, 0.0);
+        prediction = solveSecantModel(record, SecantFluidModel::Base::Accepted, 0.0, &cost);
     }
     catch (const std::runtime_error& e)
     {
@@ -575,10 +581,10 @@ std::optional<LevelAttempt> CoupledDriver::Impl::predictSecant(LevelRecord& reco
     {
         iterate = prediction->displacement;
         std::ostringstream note;
-        note << std::setprecision(3) << "secant predictor (" << prediction->columns
-             << " columns; " << prediction->solidSolves << " solid solves " << secantSolveSeconds
-             << " s (assembly " << secantAssemblySeconds << " s), " << prediction->responseColumns << " response columns "
-             << secantResponseSeconds << " s)";
+        note << std::setprecision(3) << "secant predictor (" << prediction->columns << " columns; "
+             << prediction->solidSolves << " solid solves " << cost.solveSeconds << " s (assembly "
+             << cost.assemblySeconds << " s), " << prediction->responseColumns
+             << " response columns " << cost.responseSeconds << " s)";
         predictorNote = note.str();
     }
     else if (twoLevels)

@@ -427,7 +427,6 @@ bool StructuralSolver::linearTangentFromParts()
     for (std::size_t k = 0; k < values.size(); ++k)
         values[k] = lambda * lambdaPart_[k] + mu * muPart_[k];
     linear_->setValues(std::move(values));
-    ++tangentVersion_;
     muValues_ = mu;
     const double drift = problem_.refactorShearDrift;
     if (factorizationsSeen_ > 0 && drift > 0.0 && std::abs(mu - muFactorized_) > drift * mu)
@@ -549,10 +548,7 @@ bool StructuralSolver::assemble(const std::vector<double>& u, bool withMatrix,
         MPI_Allreduce(MPI_IN_PLACE, fint.data(), static_cast<int>(fint.size()), MPI_DOUBLE, MPI_SUM,
                       comm_);
     if (withMatrix)
-    {
         linear_->setValues(values_);
-        ++tangentVersion_;
-    }
     return true;
 }
 
@@ -827,11 +823,11 @@ bool StructuralSolver::linearUpdate(const std::vector<double>& fTarget, SolveRep
 
 void StructuralSolver::rememberLevelSolve(std::vector<double> x)
 {
-    if (levelSolvesVersion_ != tangentVersion_)
+    if (levelSolvesVersion_ != linear_->valuesVersion())
     {
         levelSolutions_.clear();
         levelLoads_.clear();
-        levelSolvesVersion_ = tangentVersion_;
+        levelSolvesVersion_ = linear_->valuesVersion();
     }
     std::vector<double> b; // K x, exactly (a solve's rhs is met only to its tolerance)
     linear_->multiplyAll(x, b);
@@ -869,7 +865,7 @@ void StructuralSolver::rememberLevelSolve(std::vector<double> x)
 
 void StructuralSolver::projectOnLevelSolves(std::vector<double>& rhs, std::vector<double>& x) const
 {
-    if (levelSolvesVersion_ != tangentVersion_)
+    if (levelSolvesVersion_ != linear_->valuesVersion())
         return; // the matrix changed since they were kept
     for (std::size_t j = 0; j < levelSolutions_.size(); ++j)
     {
@@ -891,9 +887,9 @@ Eigen::MatrixXd StructuralSolver::interfaceResponse(const Eigen::MatrixXd& loadC
                                "converged solve at the level");
     const auto wetted = static_cast<Eigen::Index>(wettedNodes_.size());
     if (loadChanges.rows() != 3 * wetted)
-        throw std::invalid_argument("StructuralSolver::interfaceResponse: " +
-                                    std::to_string(loadChanges.rows()) + " rows, expected 3 x " +
-                                    std::to_string(wetted) + " wetted nodes");
+        throw std::invalid_argument(
+            "StructuralSolver::interfaceResponse: " + std::to_string(loadChanges.rows()) +
+            " rows, expected 3 x " + std::to_string(wetted) + " wetted nodes");
     if (!(relativeTolerance > 0.0 && relativeTolerance < 1.0))
         throw std::invalid_argument(
             "StructuralSolver::interfaceResponse: relativeTolerance must be in (0, 1)");
@@ -901,22 +897,26 @@ Eigen::MatrixXd StructuralSolver::interfaceResponse(const Eigen::MatrixXd& loadC
     // a summed right-hand side would be zero)
     const int columns = static_cast<int>(loadChanges.cols());
     const std::size_t free = static_cast<std::size_t>(numFree_);
+    // free equation of interface row r = 3 k + i (wetted node k, component i); -1: prescribed
+    const auto equationOf = [&](Eigen::Index r) {
+        return equation_[3 * wettedNodes_[static_cast<std::size_t>(r / 3)] +
+                         static_cast<int>(r % 3)];
+    };
     std::vector<double> rhs(rank_ == 0 ? free * columns : 0, 0.0);
     std::vector<double> allowances(columns, 0.0);
     for (int j = 0; j < columns; ++j)
     {
         double norm2 = 0.0;
-        for (Eigen::Index k = 0; k < wetted; ++k)
-            for (int i = 0; i < 3; ++i)
-            {
-                const int eq = equation_[3 * wettedNodes_[k] + i];
-                if (eq < 0)
-                    continue;
-                const double f = loadChanges(3 * k + i, j);
-                norm2 += f * f;
-                if (rank_ == 0)
-                    rhs[free * j + eq] = f;
-            }
+        for (Eigen::Index r = 0; r < loadChanges.rows(); ++r)
+        {
+            const int eq = equationOf(r);
+            if (eq < 0)
+                continue;
+            const double f = loadChanges(r, j);
+            norm2 += f * f;
+            if (rank_ == 0)
+                rhs[free * j + eq] = f;
+        }
         if (!std::isfinite(norm2))
             throw std::runtime_error("StructuralSolver::interfaceResponse: non-finite loads");
         allowances[j] = relativeTolerance * std::sqrt(norm2);
@@ -929,18 +929,14 @@ Eigen::MatrixXd StructuralSolver::interfaceResponse(const Eigen::MatrixXd& loadC
     // on a stale factor the columns' answers serve the level's later solves
     // (projectOnLevelSolves)
     for (int j = 0; stale && j < columns; ++j)
-        rememberLevelSolve(std::vector<double>(
-            rhs.begin() + static_cast<std::ptrdiff_t>(free * j),
-            rhs.begin() + static_cast<std::ptrdiff_t>(free * (j + 1))));
+        rememberLevelSolve(
+            std::vector<double>(rhs.begin() + static_cast<std::ptrdiff_t>(free * j),
+                                rhs.begin() + static_cast<std::ptrdiff_t>(free * (j + 1))));
     Eigen::MatrixXd response = Eigen::MatrixXd::Zero(loadChanges.rows(), columns);
     for (int j = 0; j < columns; ++j)
-        for (Eigen::Index k = 0; k < wetted; ++k)
-            for (int i = 0; i < 3; ++i)
-            {
-                const int eq = equation_[3 * wettedNodes_[k] + i];
-                if (eq >= 0)
-                    response(3 * k + i, j) = rhs[free * j + eq];
-            }
+        for (Eigen::Index r = 0; r < loadChanges.rows(); ++r)
+            if (const int eq = equationOf(r); eq >= 0)
+                response(r, j) = rhs[free * j + eq];
     linearSeconds_ += MPI_Wtime() - start;
     return response;
 }

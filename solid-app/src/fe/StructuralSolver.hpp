@@ -298,8 +298,7 @@ private:
     int historyVersion_ = 0, offsetsVersion_ = -1; // committed history changes / offsets built
     int elementTangentAssemblies_ = 0;
     int responseColumns_ = 0;
-    int tangentVersion_ = 0;          // counts linear_->setValues() calls
-    int levelSolvesVersion_ = -1;     // tangentVersion_ of levelSolutions_
+    long levelSolvesVersion_ = -1; // linear_->valuesVersion() of levelSolutions_
     std::vector<std::vector<double>> levelSolutions_, levelLoads_; // rememberLevelSolve()
 
     std::vector<double> u_, uCommitted_;

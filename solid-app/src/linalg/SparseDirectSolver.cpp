@@ -578,6 +578,7 @@ void SparseDirectSolver::setValues(std::vector<double> values)
         for (std::size_t k = 0; k < keptIndex_.size(); ++k)
             kept[k] = values[keptIndex_[k]];
     }
+    ++valuesVersion_;
     const bool same = valuesSet_ && kept.size() == values_.size() &&
                       std::memcmp(kept.data(), values_.data(), kept.size() * sizeof(double)) == 0;
     valuesSet_ = true;
@@ -696,16 +697,20 @@ void SparseDirectSolver::factorizeNumerically()
     valuesChanged_ = false;
 }
 
+bool SparseDirectSolver::cgOnStaleFactor() const
+{
+    if (!(options_.reuseFactorization && options_.symmetric && factorized_ && !refreshFactor_))
+        return false;
+    int local[2] = {patternChanged_ ? 1 : 0, valuesChanged_ ? 1 : 0};
+    int global[2];
+    MPI_Allreduce(local, global, 2, MPI_INT, MPI_MAX, comm_);
+    return !global[0] && global[1];
+}
+
 void SparseDirectSolver::solve(std::vector<double>& rhsAndSolution, double residualAllowance)
 {
-    if (options_.reuseFactorization && options_.symmetric && factorized_ && !refreshFactor_)
-    {
-        int local[2] = {patternChanged_ ? 1 : 0, valuesChanged_ ? 1 : 0};
-        int global[2];
-        MPI_Allreduce(local, global, 2, MPI_INT, MPI_MAX, comm_);
-        if (!global[0] && global[1] && solveWithStaleFactor(rhsAndSolution, residualAllowance))
-            return;
-    }
+    if (cgOnStaleFactor() && solveManyWithStaleFactor(rhsAndSolution, 1, {residualAllowance}))
+        return;
     refreshFactor_ = false;
     factorize();
     if (!stats_.lowRankActive && !options_.checkResidual)
@@ -839,76 +844,6 @@ void SparseDirectSolver::multiplyAll(std::vector<double>& x, std::vector<double>
     broadcastFromRoot(y);
 }
 
-bool SparseDirectSolver::solveWithStaleFactor(std::vector<double>& b, double residualAllowance)
-{
-    const bool root = rankOf(comm_) == 0;
-    std::vector<double> x(n_, 0.0), r, z, p(n_, 0.0), q;
-    auto dot = [&](const std::vector<double>& u, const std::vector<double>& v)
-    {
-        double s = 0.0;
-        if (root)
-            for (int i = 0; i < n_; ++i)
-                s += u[i] * v[i];
-        MPI_Bcast(&s, 1, MPI_DOUBLE, 0, comm_);
-        return s;
-    };
-    if (root)
-        r = b;
-    else
-        r.assign(n_, 0.0);
-    const double bNorm = std::sqrt(dot(r, r));
-    if (!std::isfinite(bNorm))
-        return false;
-    if (bNorm <= residualAllowance) // x = 0 leaves the residual b, within what is allowed
-    {
-        if (root)
-            std::fill(b.begin(), b.end(), 0.0);
-        ++reusedSolves_;
-        ++solveCount_;
-        return true;
-    }
-    const double target = std::max(options_.reuseTolerance * bNorm, residualAllowance);
-    z = r;
-    backSubstitute(z);
-    double rz = dot(r, z);
-    if (root)
-        p = z;
-    for (int it = 1; it <= options_.reuseMaxIterations; ++it)
-    {
-        multiply(p, q);
-        const double pq = dot(p, q);
-        if (!(pq > 0.0) || !std::isfinite(pq))
-            return false; // indefinite or broken down: factorize instead
-        const double alpha = rz / pq;
-        if (root)
-            for (int i = 0; i < n_; ++i)
-            {
-                x[i] += alpha * p[i];
-                r[i] -= alpha * q[i];
-            }
-        const double rNorm = std::sqrt(dot(r, r));
-        if (rNorm <= target)
-        {
-            if (root)
-                b = x;
-            ++reusedSolves_;
-            reuseIterations_ += it;
-            ++solveCount_;
-            refreshFactor_ = it > options_.refactorAfterIterations;
-            return true;
-        }
-        z = r;
-        backSubstitute(z);
-        const double rzNext = dot(r, z);
-        const double beta = rzNext / rz;
-        rz = rzNext;
-        if (root)
-            for (int i = 0; i < n_; ++i)
-                p[i] = z[i] + beta * p[i];
-    }
-    return false;
-}
-
 void SparseDirectSolver::backSubstitute(std::vector<double>& rhsAndSolution)
 {
     int sizeOk = 1;
@@ -955,15 +890,8 @@ void SparseDirectSolver::solveMany(std::vector<double>& rhsAndSolutions, int col
                                     "values on rank 0 and one allowance per column");
     if (columns == 0)
         return;
-    if (options_.reuseFactorization && options_.symmetric && factorized_ && !refreshFactor_)
-    {
-        int local[2] = {patternChanged_ ? 1 : 0, valuesChanged_ ? 1 : 0};
-        int global[2];
-        MPI_Allreduce(local, global, 2, MPI_INT, MPI_MAX, comm_);
-        if (!global[0] && global[1] &&
-            solveManyWithStaleFactor(rhsAndSolutions, columns, residualAllowances))
-            return;
-    }
+    if (cgOnStaleFactor() && solveManyWithStaleFactor(rhsAndSolutions, columns, residualAllowances))
+        return;
     refreshFactor_ = false;
     factorize();
     if (stats_.lowRankActive || options_.checkResidual)
@@ -1023,6 +951,8 @@ bool SparseDirectSolver::solveManyWithStaleFactor(std::vector<double>& b, int co
     const auto precondition = [&](const std::vector<int>& which)
     {
         z.assign(n * which.size(), 0.0);
+        if (which.empty())
+            return; // every column within its allowance: x = 0, no solve phase
         if (root)
             for (std::size_t a = 0; a < which.size(); ++a)
                 std::copy(col(r, which[a]), col(r, which[a]) + n, z.data() + n * a);

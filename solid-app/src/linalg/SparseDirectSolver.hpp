@@ -207,6 +207,9 @@ public:
     // True when the values changed since the last factorization (collective): a solve() now
     // runs CG on the stale factor (reuseFactorization) or factorizes first.
     bool factorIsStale() const;
+    // Counts setValues() calls (collective, so the same on every rank): a caller's key for
+    // work that holds for one matrix, e.g. solutions kept for later right-hand sides.
+    long valuesVersion() const { return valuesVersion_; }
 
     // y = A x with the current values (collective): x significant on rank 0 (broadcast to the
     // others, so it is resized there), y returned on every rank.
@@ -239,14 +242,16 @@ private:
     void backSubstitute(std::vector<double>& rhsAndSolution); // rank 0 data, collective
     // the same for `columns` right-hand sides, column-major (one MUMPS solve phase)
     void backSubstitute(double* rhsAndSolutions, int columns);
-    // solveMany() on a stale factor; false (b untouched) when a column misses the tolerance
+    // CG preconditioned by the stale factorization on every column, in lockstep (solve() is
+    // the one-column case); false (b untouched) when a column misses the tolerance within
+    // reuseMaxIterations or CG breaks down. Collective; b/x significant on rank 0.
     bool solveManyWithStaleFactor(std::vector<double>& b, int columns,
                                   const std::vector<double>& residualAllowances);
     // y = A x with the current values (x significant on rank 0; y summed onto rank 0).
     void multiply(std::vector<double>& x, std::vector<double>& y) const;
-    // CG preconditioned by the stale factorization; false (b untouched) when it misses the
-    // tolerance. Collective; b/x significant on rank 0.
-    bool solveWithStaleFactor(std::vector<double>& rhsAndSolution, double residualAllowance);
+    // True when the next solve runs CG on the stale factorization (reuseFactorization, values
+    // changed on some rank, pattern not). Collective.
+    bool cgOnStaleFactor() const;
     // With a BLR factor: residual check and iterative refinement of x for b (rank 0 data);
     // true when |b - A x| <= refinementTolerance |b|. Collective.
     bool refine(const std::vector<double>& b, std::vector<double>& x);
@@ -264,6 +269,7 @@ private:
     std::vector<double> values_;  // kept values
     bool patternChanged_ = true;  // local flags, reduced in factorize()
     bool valuesChanged_ = true;
+    long valuesVersion_ = 0; // setValues() calls
     bool valuesSet_ = false;
     bool analysed_ = false;
     bool factorized_ = false;
