@@ -98,6 +98,7 @@ public:
             f.iterations = report.simpleIterations;
             f.converged = report.converged;
             f.residuals = report.residuals;
+            f.band = report.band;
             channel_->send(comm::protocol::encode(f));
         });
     }

@@ -253,17 +253,20 @@ void Foam::fluidSolidCoupling::answerSolve
     checkDiverged(r);
 
     fsi::fluid::ForceReport report;
-    const vectorField f(faceForces(patchi_));
+    // A flow without a steady state that met the band rule answers with its mean.
+    const vectorField f(r.inTheMean ? meanBlockForces() : faceForces(patchi_));
     const clockTime gather;
     report.faceForces = gatherFaceForces(f);
     const scalar exchangeSeconds = scatterSeconds + gather.elapsedTime();
     report.simpleIterations = r.iterations;
     report.residuals = {r.residualU, r.residualP};
     report.converged = r.converged;
+    report.band = r.inTheMean ? r.band : 0;
     const vector total = gSum(f);
     Info<< "fsi: step " << c.step << " iteration " << c.iteration
         << ": " << r.iterations << " SIMPLE iterations"
         << (r.converged ? "" : " (cap reached)")
+        << (r.inTheMean ? " (converged in the mean; the mean force is sent)" : "")
         << ", residuals U " << r.residualU << " p " << r.residualP
         << ", interface force " << total << " N" << endl;
     writeInterfaceCsv
@@ -327,6 +330,35 @@ Foam::fluidSolidCoupling::SolveControls Foam::fluidSolidCoupling::controls
     c.estimateError = d.getOrDefault<bool>("estimateForceError", false);
     c.stableIterations = d.getOrDefault<label>("stableIterations", 1);
     c.oscillationWindow = d.getOrDefault<label>("oscillationWindow", 0);
+    c.bandTolerance = d.getOrDefault<scalar>("bandTolerance", 0);
+    c.bandWindow = d.getOrDefault<label>("bandWindow", 100);
+    if (c.bandTolerance != 0 && subDictName != "coupled")
+    {
+        FatalIOErrorInFunction(dict_)
+            << "system/fsiDict: " << subDictName << ".bandTolerance is a coupled-only key"
+            << " (a rigid solve reports its band in rigidIterations.csv); remove it"
+            << exit(FatalIOError);
+    }
+    if
+    (
+        c.bandTolerance < 0 || c.bandTolerance >= 1
+     || (c.bandTolerance > 0 && (c.bandWindow < 10 || 2*c.bandWindow > c.maxIterations))
+    )
+    {
+        FatalIOErrorInFunction(dict_)
+            << "system/fsiDict: " << subDictName << ".bandTolerance " << c.bandTolerance
+            << " / bandWindow " << c.bandWindow << " are invalid: bandTolerance 0 (off) or in"
+            << " (0, 1) (relative half-width of the force band), bandWindow >= 10 SIMPLE"
+            << " iterations and 2 bandWindow <= maxIterations " << c.maxIterations
+            << exit(FatalIOError);
+    }
+    if (c.bandTolerance > 0 && c.forceTolerance <= 0)
+    {
+        FatalIOErrorInFunction(dict_)
+            << "system/fsiDict: " << subDictName << ".bandTolerance needs a forceTolerance"
+            << " > 0 (it bounds the change of the mean between two blocks)"
+            << exit(FatalIOError);
+    }
     if (c.oscillationWindow != 0 && (c.oscillationWindow < 3 || c.oscillationWindow > 1000))
     {
         FatalIOErrorInFunction(dict_)
@@ -372,6 +404,10 @@ Foam::fluidSolidCoupling::SolveControls Foam::fluidSolidCoupling::askedControls
     // The fluid's own guards against a pause of an oscillating force (fsiDict coupled)
     c.stableIterations = own.stableIterations;
     c.oscillationWindow = own.oscillationWindow;
+    // and its rule for a flow without a steady state (the mean's change bounded by the asked
+    // tolerance)
+    c.bandTolerance = own.bandTolerance;
+    c.bandWindow = own.bandWindow;
     return c;
 }
 

@@ -31,6 +31,34 @@ Foam::vector Foam::fluidSolidCoupling::interfaceForce() const
 }
 
 
+Foam::vector Foam::fluidSolidCoupling::addToForceBlocks
+(
+    const label iteration,
+    const label blockLength
+)
+{
+    const tmp<vectorField> f = faceForces(patchi_);
+    if ((iteration - 1) % blockLength == 0)
+    {
+        // A new block: the one just completed becomes the previous one.
+        previousBlockForces_ = currentBlockForces_;
+        currentBlockForces_ = vectorField(f().size(), Zero);
+        blockLength_ = blockLength;
+    }
+    currentBlockForces_ += fsi::fluid::SteadyConvergence::blockWeight(iteration, blockLength)*f();
+    return gSum(f());
+}
+
+
+Foam::tmp<Foam::vectorField> Foam::fluidSolidCoupling::meanBlockForces() const
+{
+    return tmp<vectorField>::New
+    (
+        (previousBlockForces_ + currentBlockForces_)/scalar(blockLength_)   // weights: n/2 each
+    );
+}
+
+
 void Foam::fluidSolidCoupling::reportForces
 (
     const word& label,

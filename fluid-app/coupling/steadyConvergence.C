@@ -27,7 +27,60 @@ bool SteadyConvergence::update(int iteration, double residualU, double residualP
     const bool residualOk = residualsMet(residualU, residualP);
     const bool forceOk = controls_.forceTolerance <= 0 || forceMet(iteration, force);
     stable_ = (residualOk && forceOk) ? stable_ + 1 : 0;
-    return stable_ >= controls_.stableIterations && iteration >= controls_.minIterations;
+    const bool enoughIterations = iteration >= controls_.minIterations;
+    if (stable_ >= controls_.stableIterations && enoughIterations)
+        return true;
+    inTheMean_ = controls_.bandTolerance > 0 && meanMet(iteration, force) && enoughIterations;
+    return inTheMean_;
+}
+
+double SteadyConvergence::blockWeight(int iteration, int blockLength)
+{
+    const int j = (iteration - 1) % blockLength;
+    const double s = std::sin(M_PI * (j + 0.5) / blockLength);
+    return s * s;
+}
+
+void SteadyConvergence::ForceBlock::add(const double force[3], double weight)
+{
+    for (int i = 0; i < 3; ++i)
+    {
+        weightedSum[i] += weight * force[i];
+        low[i] = count == 0 ? force[i] : std::min(low[i], force[i]);
+        high[i] = count == 0 ? force[i] : std::max(high[i], force[i]);
+    }
+    ++count;
+}
+
+bool SteadyConvergence::meanMet(int iteration, const double force[3])
+{
+    const int n = controls_.bandWindow;
+    current_.add(force, blockWeight(iteration, n));
+    if (current_.count < n)
+        return false;
+    bool met = false;
+    if (previous_.count == n)
+    {
+        double mean2 = 0, change2 = 0, band2 = 0;
+        for (int i = 0; i < 3; ++i)
+        {
+            // each block's weights sum to n / 2
+            const double mean = (previous_.weightedSum[i] + current_.weightedSum[i]) / n;
+            const double change = 2 * (current_.weightedSum[i] - previous_.weightedSum[i]) / n;
+            const double half = 0.5 * (std::max(previous_.high[i], current_.high[i]) -
+                                       std::min(previous_.low[i], current_.low[i]));
+            mean2 += mean * mean;
+            change2 += change * change;
+            band2 += half * half;
+        }
+        const double magMean = std::sqrt(mean2);
+        band_ = magMean > 0 ? std::sqrt(band2) / magMean : HUGE_VAL;
+        meanChange_ = magMean > 0 ? std::sqrt(change2) / magMean : HUGE_VAL;
+        met = band_ <= controls_.bandTolerance && meanChange_ <= controls_.forceTolerance;
+    }
+    previous_ = current_;
+    current_ = ForceBlock();
+    return met;
 }
 
 double SteadyConvergence::estimatedForceError(const std::vector<double>& changes)

@@ -75,6 +75,12 @@ TEST(Protocol, ForcesRoundTripAndTheAnswerMustMatchTheQuestion)
     EXPECT_EQ(back.iterations, 31);
     EXPECT_FALSE(back.converged);
     EXPECT_EQ(back.residuals, f.residuals);
+    EXPECT_EQ(back.band, 0.0); // a steady solve
+    f.band = 1.4e-3;           // converged in the mean: the band rides after the residuals
+    const protocol::Forces banded =
+        protocol::decodeForces(overTheWire(protocol::encode(f)), 4, 7, 2);
+    EXPECT_EQ(banded.band, 1.4e-3);
+    EXPECT_EQ(banded.residuals, f.residuals);
     EXPECT_THROW(protocol::decodeForces(overTheWire(protocol::encode(f)), 4, 6, 2), ProtocolError);
     EXPECT_THROW(protocol::decodeForces(overTheWire(protocol::encode(f)), 4, 7, 3), ProtocolError);
     try

@@ -322,6 +322,43 @@ def t_warm_start(a):
     check(n_sec <= 0.5 * n_prev, "step 3 SIMPLE iterations: secant %d <= 0.5 x previous %d" % (n_sec, n_prev))
 
 
+def t_band_mean(a):
+    """fsiDict coupled.bandTolerance (fluid-app/coupling/steadyConvergence.H): a solve that has
+    not converged may stop in the mean at the end of a block. A prescribed 2 deg rotation from
+    the converged flow, a residual drop no solve reaches (1e-12) and a wide band (0.5): the solve
+    must stop in the mean at a block's end (bandWindow 10) once two blocks' weighted means agree to
+    forceTolerance 1e-4, and the face forces it answers with must sum to the Hann-weighted mean
+    of the last two blocks' interface forces in solveIterations.csv (the same weights: to
+    round-off of the CSV's 12 digits)."""
+    fsi = ("writeInterfaceData true;\nwriteSolveIterations true;\n"
+           "coupled { maxIterations 400; residualDrop 1e-12; forceTolerance 1e-4;"
+           " bandTolerance 0.5; bandWindow 10; }\n"
+           "prescribed { type rotation; origin (0.2 0.2 0); axis (0 0 1); angle 2; steps 1; solveFlow true; }")
+    d = prepare(a, "band-mean", single=True, converged_start=True, extra_fsi=fsi)
+    rc, log = run([a.fluid_app, "-prescribed", "-case", d], os.path.join(d, "log.fluid-app"))
+    post = os.path.join(d, "postProcessing", "fsi")
+    rows = read_csv(os.path.join(post, "coupling.csv")) if rc == 0 else []
+    m = re.search(r"SIMPLE converged in the mean in (\d+) iterations: band \+-(\S+) of the mean force"
+                  r" over the last 20, its blocks' means differ by (\S+)", log)
+    n = int(m.group(1)) if m else -1
+    check(rc == 0 and m is not None and n % 10 == 0 and 20 <= n < 400 and len(rows) == 1
+          and int(rows[0][2]) == n and rows[0][3] == 1,
+          "exit 0, the solve stopped in the mean at a block's end (%d SIMPLE iterations, band %s,"
+          " means differ by %s), reported converged" % (n, m.group(2) if m else "?", m.group(3) if m else "?"))
+    check(m is not None and float(m.group(3)) <= 1e-4, "blocks' means differ by <= forceTolerance 1e-4")
+    hist = [r for r in read_csv(os.path.join(post, "solveIterations.csv"))] if rc == 0 else []
+    last = [r for r in hist if n - 20 < int(r[2]) <= n]
+    weights = [math.sin(math.pi * (((int(r[2]) - 1) % 10) + 0.5) / 10) ** 2 for r in last]
+    mean = [sum(w * r[c] for w, r in zip(weights, last)) / sum(weights) for c in (3, 4, 5)]
+    files = [f for f in os.listdir(post) if f.startswith("interfaceForces_") and f != "interfaceForces_rigid.csv"] if rc == 0 else []
+    faces = read_csv(os.path.join(post, files[0])) if len(files) == 1 else []
+    sent = [sum(r[c] for r in faces) for c in (1, 2, 3)]
+    rel = math.dist(sent, mean) / math.hypot(*mean) if len(last) == 20 and faces else float("inf")
+    lastF = last[-1][3:6] if last else [float("nan")] * 3
+    check(rel <= 1e-9, "the forces sent %s sum to the weighted mean %s of SIMPLE iterations %d-%d:"
+          " rel. diff %.2e <= 1e-9 (last iterate %s)" % (sent, mean, n - 19, n, rel, lastF))
+
+
 def t_bad_case(a):
     """Bad OpenFOAM-case input: a missing interface patch, a missing fsiDict key, a restart
     without a checkpointed level. Each stops non-zero, naming system/fsiDict (or the file) and the fix."""
@@ -344,6 +381,15 @@ def t_bad_case(a):
     rc, log = run([a.fluid_app, "-rigid", "-case", d], os.path.join(d, "log.bad-window"))
     check(rc != 0 and "system/fsiDict: coupled.oscillationWindow 2 is invalid: 0 (off) or 3..1000" in log,
           "coupled.oscillationWindow 2: exit %d, message names the file's key and the range" % rc)
+    open(fsi, "w").write(good + "\ncoupled { forceTolerance 1e-4; bandTolerance 2e-3; bandWindow 600; }\n")
+    rc, log = run([a.fluid_app, "-rigid", "-case", d], os.path.join(d, "log.bad-band"))
+    check(rc != 0 and "system/fsiDict: coupled.bandTolerance 0.002 / bandWindow 600 are invalid" in log
+          and "2 bandWindow <= maxIterations" in log,
+          "coupled.bandWindow 600 above half the cap: exit %d, message names the key and the bound" % rc)
+    open(fsi, "w").write(good + "\nrigid { forceTolerance 1e-4; bandTolerance 2e-3; }\n")
+    rc, log = run([a.fluid_app, "-rigid", "-case", d], os.path.join(d, "log.rigid-band"))
+    check(rc != 0 and "system/fsiDict: rigid.bandTolerance is a coupled-only key" in log,
+          "rigid.bandTolerance: exit %d, message says it is coupled-only" % rc)
     # The run mode is resolved once, before OpenFOAM starts (fluid-app/coupling/runMode.H).
     open(fsi, "w").write(good + "\nmode rigd;\n")
     rc, log = run([a.fluid_app, "-case", d], os.path.join(d, "log.bad-mode"))
@@ -529,7 +575,7 @@ def t_solid_death(a):
 
 TESTS = {"cfd1-coarse": t_cfd1_coarse, "cfd1-fine": t_cfd1_fine, "force-consistency": t_force_consistency,
          "motion-rotation": t_motion_rotation, "motion-bending": t_motion_bending,
-         "quality-guard": t_quality_guard, "wall-at-rest": t_wall_at_rest, "warm-start": t_warm_start, "bad-case": t_bad_case, "parallel-equivalence": t_parallel_equivalence,
+         "quality-guard": t_quality_guard, "wall-at-rest": t_wall_at_rest, "warm-start": t_warm_start, "band-mean": t_band_mean, "bad-case": t_bad_case, "parallel-equivalence": t_parallel_equivalence,
          "mpmd": t_mpmd, "port": t_port, "peer-abort": t_peer_abort,
          "failed-start": t_failed_start, "solid-death": t_solid_death}
 

@@ -179,3 +179,130 @@ TEST(SteadyConvergence, OscillationWindowLeavesMonotoneConvergenceAlone)
     const std::vector<double> turning = {1, 0, 0, 2, 0, 0, 1.5, 0, 0};
     EXPECT_DOUBLE_EQ(SteadyConvergence::oscillationBand(turning), 0.5);
 }
+
+namespace
+{
+// A force F(k) = (F0 + a sin(2 pi k / P) + s k, 0.4 F0 - a cos(2 pi k / P), 0): a sustained
+// oscillation of relative amplitude a / |F0| (no steady state), with a drift s per iteration.
+struct UnsteadyForce
+{
+    double f0 = 10.0, amplitude = 0.01, period = 23.0, drift = 0.0;
+    void at(int k, double force[3]) const
+    {
+        const double phase = 2 * M_PI * k / period;
+        force[0] = f0 + amplitude * std::sin(phase) + drift * k;
+        force[1] = 0.4 * f0 - amplitude * std::cos(phase);
+        force[2] = 0.0;
+    }
+};
+
+struct BandStop
+{
+    int iteration = 0; // 0: the rule never stopped the solve
+    bool inTheMean = false;
+    double band = 0, meanChange = 0;
+};
+
+BandStop runUnsteady(const SolveControls& c, const UnsteadyForce& f, int cap)
+{
+    SteadyConvergence rule(c, 0, 0);
+    for (int k = 1; k <= cap; ++k)
+    {
+        double force[3];
+        f.at(k, force);
+        if (rule.update(k, 1.0, 1.0, force))
+            return {k, rule.stoppedInTheMean(), rule.band(), rule.meanChange()};
+    }
+    return {};
+}
+
+SolveControls drivenControls(double bandTolerance)
+{
+    SolveControls c;
+    c.maxIterations = 400;
+    c.forceTolerance = 5e-5; // the driver's final accuracy of the hydrofoil case
+    c.residualRequired = false;
+    c.estimateError = true;
+    c.oscillationWindow = 30; // honest: no stop at a turning point
+    c.bandTolerance = bandTolerance;
+    c.bandWindow = 100;
+    return c;
+}
+} // namespace
+
+// A flow without a steady state (the fine hydrofoil's level 16: the lift oscillates by +-1e-3):
+// the steady rule never stops it; the band rule stops it at the end of the second block, with
+// the band's half-width and a block-to-block change of the mean below the asked tolerance.
+TEST(SteadyConvergence, BandRuleStopsASustainedOscillationInTheMean)
+{
+    UnsteadyForce f; // relative amplitude 0.01 / |(10, 4)| = 9.3e-4
+    const double relativeAmplitude = f.amplitude / std::hypot(f.f0, 0.4 * f.f0);
+    EXPECT_EQ(runUnsteady(drivenControls(0.0), f, 400).iteration, 0);
+
+    const BandStop stop = runUnsteady(drivenControls(2e-3), f, 400);
+    EXPECT_EQ(stop.iteration, 200);
+    EXPECT_TRUE(stop.inTheMean);
+    // the band of a circle in (Fx, Fy) sampled 200 times: half-width a per component
+    EXPECT_NEAR(stop.band, std::sqrt(2.0) * relativeAmplitude, 0.01 * relativeAmplitude);
+    EXPECT_LE(stop.meanChange, 5e-5);
+    // The mean reported (the face forces weighted as the coupling weights them, blockWeight,
+    // whose weights sum to half the block) is the oscillation's centre (F0, 0.4 F0) to 1e-5:
+    // the plain mean of the same 200 iterations is off by 2.8e-5 (period 23 does not divide them).
+    double weightSum = 0, weighted[2] = {0, 0}, plain[2] = {0, 0};
+    for (int k = 1; k <= 200; ++k)
+    {
+        double force[3];
+        f.at(k, force);
+        const double w = SteadyConvergence::blockWeight(k, 100);
+        weightSum += w;
+        for (int i = 0; i < 2; ++i)
+        {
+            weighted[i] += w * force[i];
+            plain[i] += force[i] / 200;
+        }
+    }
+    EXPECT_NEAR(weightSum, 100.0, 1e-12);
+    const double magF = std::hypot(f.f0, 0.4 * f.f0);
+    const double weightedError =
+        std::hypot(weighted[0] / weightSum - f.f0, weighted[1] / weightSum - 0.4 * f.f0) / magF;
+    const double plainError = std::hypot(plain[0] - f.f0, plain[1] - 0.4 * f.f0) / magF;
+    EXPECT_LE(weightedError, 1e-5);
+    std::printf("mean of the last 200 iterations: error %.1e Hann-weighted per block, %.1e plain\n",
+                weightedError, plainError);
+    std::printf("sustained oscillation (relative amplitude %.1e, period 23): stopped in the mean "
+                "at %d, band %.2e, blocks' means differ by %.1e\n",
+                relativeAmplitude, stop.iteration, stop.band, stop.meanChange);
+}
+
+// A band wider than the tolerance is not a converged mean: the solve runs to its cap.
+TEST(SteadyConvergence, BandRuleRefusesAWideBand)
+{
+    UnsteadyForce f;
+    f.amplitude = 0.05; // 4.6e-3 relative, band 6.6e-3 > 2e-3
+    EXPECT_EQ(runUnsteady(drivenControls(2e-3), f, 400).iteration, 0);
+}
+
+// A drifting mean is not converged either: 2e-6 |F0| per iteration moves the block mean by
+// 2e-4 |F0| (1.9e-4 of |F|, 3.7x the asked 5e-5) while the band (1.5e-3) stays within 2e-3.
+TEST(SteadyConvergence, BandRuleRefusesADriftingMean)
+{
+    UnsteadyForce f;
+    f.drift = 2e-6 * f.f0;
+    EXPECT_EQ(runUnsteady(drivenControls(2e-3), f, 400).iteration, 0);
+    f.drift = 0;
+    EXPECT_EQ(runUnsteady(drivenControls(2e-3), f, 400).iteration, 200); // the same without it
+}
+
+// A converging solve stops where it did without the rule (the blocks only add a way out).
+TEST(SteadyConvergence, BandRuleLeavesConvergingSolvesAlone)
+{
+    SolveControls c = drivenControls(2e-3);
+    c.oscillationWindow = 0;
+    c.forceTolerance = 1e-3;
+    auto one = [](int) { return 1.0; };
+    auto geometric = [](int k) { return 10.0 + std::pow(0.5, k); };
+    const int with = stopIteration(c, 0, 0, one, geometric, 400);
+    c.bandTolerance = 0;
+    EXPECT_EQ(with, stopIteration(c, 0, 0, one, geometric, 400));
+    EXPECT_EQ(with, 7);
+}

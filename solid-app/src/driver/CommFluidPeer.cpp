@@ -63,6 +63,7 @@ FluidResponse CommFluidPeer::solve(int level, int iteration, double time,
         r.faceForces = rows<mapping::Values>(answer.faceForces);
     r.iterations = static_cast<int>(answer.iterations);
     r.converged = answer.converged;
+    r.band = answer.band;
     if (!answer.residuals.empty())
         r.finalResidual = *std::max_element(answer.residuals.begin(), answer.residuals.end());
     return r;

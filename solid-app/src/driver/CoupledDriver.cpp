@@ -647,6 +647,13 @@ FluidResponse CoupledDriver::Impl::solveFluid(const LevelRecord& record, int ite
         line.fluidResidual = response.finalResidual;
         line.fluidConverged = response.converged;
         line.fluidTolerance = accuracy.driverControlled ? accuracy.forceTolerance : 0.0;
+        if (response.band > 0)
+        {
+            std::ostringstream note;
+            note << std::setprecision(2) << "fluid converged in the mean (no steady state; band +-"
+                 << 100 * response.band << " %)";
+            line.note += (line.note.empty() ? "" : "; ") + note.str();
+        }
         summary.fluidIterations += response.iterations;
         summary.fluidSeconds += line.wallFluid;
         summary.mappingSeconds += line.wallMapping;

@@ -26,11 +26,15 @@ struct FluidInterface
 // One fluid answer to a SOLVE command.
 struct FluidResponse
 {
-    mapping::Values faceForces;  // force of the fluid ON the structure per face [N], faces x 3
-    int iterations = 0;          // SIMPLE iterations used in this solve
-    double initialResidual = 0;  // largest initial residual of the solve (U, p)
-    double finalResidual = 0;    // largest final residual
-    bool converged = false;      // the asked accuracy was met (else: iteration cap hit)
+    mapping::Values faceForces; // force of the fluid ON the structure per face [N], faces x 3
+    int iterations = 0;         // SIMPLE iterations used in this solve
+    double initialResidual = 0; // largest initial residual of the solve (U, p)
+    double finalResidual = 0;   // largest final residual
+    bool converged = false;     // the asked accuracy was met (else: iteration cap hit)
+    // > 0: a flow without a steady state, converged in the mean (faceForces are its mean over
+    // the fluid's last iterations; fsiDict coupled.bandTolerance): the relative half-width of
+    // the force's band
+    double band = 0;
 };
 
 class FluidPeer

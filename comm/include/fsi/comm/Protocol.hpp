@@ -68,6 +68,8 @@ struct Forces
     std::int64_t iterations = 0;    // SIMPLE iterations of the solve
     bool converged = true;          // the asked accuracy was met before the iteration cap
     std::vector<double> residuals;  // final residuals {U, p}
+    double band = 0; // > 0: a flow without a steady state, converged in the mean (faceForces
+                     // are the mean); the relative half-width of the force's band
 };
 
 struct Accept
@@ -176,6 +178,8 @@ inline Message encode(const Forces& f)
     m.values = f.faceForces;
     m.integers = {f.iterations, f.converged ? 1 : 0};
     m.scalars = f.residuals;
+    if (f.band > 0)
+        m.scalars.push_back(f.band); // after {U, p}
     return m;
 }
 
@@ -200,6 +204,15 @@ inline Forces decodeForces(Message&& m, std::int64_t level, std::int64_t iterati
     f.faceForces = std::move(m.values);
     f.iterations = m.integers[0];
     f.converged = m.integers[1] != 0;
+    detail::require(m.scalars.size() == 2 || m.scalars.size() == 3,
+                    "a Forces message carries the residuals {U, p} and, for a solve converged "
+                    "in the mean, its band; got " +
+                        std::to_string(m.scalars.size()) + " scalars");
+    if (m.scalars.size() == 3)
+    {
+        f.band = m.scalars[2];
+        m.scalars.pop_back();
+    }
     f.residuals = std::move(m.scalars);
     return f;
 }
