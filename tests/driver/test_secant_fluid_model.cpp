@@ -136,6 +136,50 @@ TEST(SecantFluidModel, ColumnsFromTheSolidsLinearResponse)
     EXPECT_LT((again->displacement - exact).norm(), 0.05 * correction);
 }
 
+// The base solve and the response columns in one call (solveAndRespond: the solid's
+// solveWithResponse): used instead of solve() + respond() for the base, the same prediction.
+TEST(SecantFluidModel, BaseSolveAndColumnsInOneCall)
+{
+    AffineProblem p;
+    SecantFluidModel model(3);
+    const Eigen::VectorXd start = Eigen::VectorXd::Random(kSize);
+    p.sampleLevel(model, 3,
+                  [&] { return Eigen::VectorXd(start + p.right * Eigen::Vector2d::Random()); });
+    const auto columns = model.selectColumns();
+    ASSERT_EQ(columns.size(), 2u);
+    int responds = 0, together = 0;
+    const SecantFluidModel::SolidResponse respond = [&](const Eigen::MatrixXd& w)
+    {
+        ++responds;
+        return Eigen::MatrixXd(p.c * w);
+    };
+    const SecantFluidModel::SolidSolveWithResponse solveAndRespond =
+        [&](const Eigen::VectorXd& f, const Eigen::MatrixXd& w)
+    {
+        ++together;
+        EXPECT_EQ(w.cols(), 2);
+        return std::make_pair(p.solid(f), Eigen::MatrixXd(p.c * w));
+    };
+    const auto solve = [&](const Eigen::VectorXd& f) { return p.solid(f); };
+    const auto prediction =
+        model.predict(columns, solve, SecantFluidModel::Base::Accepted, respond, solveAndRespond);
+    ASSERT_TRUE(prediction.has_value());
+    EXPECT_EQ(together, 1);
+    EXPECT_EQ(responds, 0);
+    EXPECT_EQ(p.solves, 1); // the one inside solveAndRespond
+    EXPECT_EQ(prediction->solidSolves, 1);
+    EXPECT_EQ(prediction->responseColumns, 2);
+    const Eigen::VectorXd exact = p.fixedPoint();
+    EXPECT_LT((prediction->displacement - exact).norm(), 1e-12 * exact.norm());
+    // the base's answer is kept: a second prediction of the level needs respond() alone
+    const auto again =
+        model.predict(columns, solve, SecantFluidModel::Base::Accepted, respond, solveAndRespond);
+    ASSERT_TRUE(again.has_value());
+    EXPECT_EQ(together, 1);
+    EXPECT_EQ(responds, 1);
+    EXPECT_LT((again->displacement - exact).norm(), 1e-12 * exact.norm());
+}
+
 // With one sampled direction only the component of the fluid's answer along it is modelled: the
 // prediction is not exact, and solve() is called once per column plus once.
 TEST(SecantFluidModel, OneColumnModelsOneDirection)

@@ -262,3 +262,82 @@ TEST(InterfaceResponse, LaterSolvesOfTheLevelStartFromItsEarlierOnes)
     }
     EXPECT_LT(diff, 1e-8 * scale);
 }
+
+// solveWithResponse = solve() then interfaceResponse(), in one lockstep linear solve: the same
+// displacement and columns; on a stale factor fewer MUMPS solve phases in all, because the
+// columns ride along with the Newton step's CG iterations instead of iterating on their own.
+TEST(InterfaceResponse, SolveWithResponseEqualsSolveThenResponse)
+{
+    for (const double drift : {0.0, 1e-6}) // 0: CG on the level-0 factor; 1e-6: refactorized
+    {
+        SCOPED_TRACE(drift == 0.0 ? "stale factorization (CG)" : "current factorization");
+        const ResponseCase c(drift);
+        std::vector<double> displacement[2];
+        Eigen::MatrixXd responses[2];
+        int phases[2] = {0, 0}; // MUMPS solve phases
+        for (const bool together : {false, true})
+        {
+            fe::StructuralSolver solver(MPI_COMM_WORLD, c.mesh, *c.law, c.problem);
+            const std::size_t n = solver.wettedNodes().size();
+            ASSERT_TRUE(solver.solve({0.0, 0.0}, tipLoad(n, -10, 0)).converged);
+            solver.acceptLevel();
+            const Eigen::MatrixXd w = loadChanges(n);
+            const int before = solver.linearSolver().backSubstitutionCount();
+            if (together)
+            {
+                ASSERT_TRUE(
+                    solver.solveWithResponse({0.5, 0.5}, tipLoad(n, -11, 1), w, 1e-9, responses[1])
+                        .converged);
+            }
+            else
+            {
+                ASSERT_TRUE(solver.solve({0.5, 0.5}, tipLoad(n, -11, 1)).converged);
+                responses[0] = solver.interfaceResponse(w, 1e-9);
+            }
+            phases[together] = solver.linearSolver().backSubstitutionCount() - before;
+            displacement[together] = solver.displacement();
+            EXPECT_EQ(solver.interfaceResponseColumns(), 2);
+            // the level goes on as after a solve(): its next solve is a linear update
+            const auto again = solver.solve({0.5, 0.5}, tipLoad(n, -12, 3));
+            ASSERT_TRUE(again.converged);
+            EXPECT_NE(again.message.find("linear update"), std::string::npos) << again.message;
+        }
+        double diff = 0, scale = 0;
+        for (std::size_t i = 0; i < displacement[0].size(); ++i)
+        {
+            diff = std::max(diff, std::abs(displacement[1][i] - displacement[0][i]));
+            scale = std::max(scale, std::abs(displacement[0][i]));
+        }
+        EXPECT_LT(diff, 1e-8 * scale);
+        ASSERT_EQ(responses[1].cols(), 2);
+        for (Eigen::Index j = 0; j < 2; ++j)
+            EXPECT_LT(relativeDifference(responses[1].col(j), responses[0].col(j)), 1e-6)
+                << "column " << j;
+        if (drift == 0.0)
+        {
+            EXPECT_LT(phases[1], phases[0]);
+            std::printf("stale factor: %d MUMPS solve phases for the solve and then the columns, "
+                        "%d with the columns riding along\n",
+                        phases[0], phases[1]);
+        }
+    }
+}
+
+TEST(InterfaceResponse, SolveWithResponseChecksItsInputFirst)
+{
+    const ResponseCase c(0.05);
+    fe::StructuralSolver solver(MPI_COMM_WORLD, c.mesh, *c.law, c.problem);
+    const std::size_t n = solver.wettedNodes().size();
+    Eigen::MatrixXd responses;
+    EXPECT_THROW(solver.solveWithResponse({0.0, 0.0}, tipLoad(n, -10, 0),
+                                          Eigen::MatrixXd::Zero(5, 1), 1e-2, responses),
+                 std::invalid_argument);
+    EXPECT_EQ(solver.factorizationCount(), 0); // nothing solved
+    const auto law = material::makeMaterial(viscoelastic(), material::Kinematics::TotalLagrangian);
+    fe::ProblemDefinition p = c.problem;
+    p.kinematics = material::Kinematics::TotalLagrangian;
+    fe::StructuralSolver finite(MPI_COMM_WORLD, c.mesh, *law, p);
+    EXPECT_THROW(
+        finite.solveWithResponse({0.0, 0.0}, tipLoad(n, -10, 0), loadChanges(n), 1e-2, responses),
+        std::logic_error);
+}

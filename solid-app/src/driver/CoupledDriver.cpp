@@ -546,16 +546,33 @@ CoupledDriver::Impl::solveSecantModel(LevelRecord& record, SecantFluidModel::Bas
     // The predictor's columns need predictor accuracy only: linear solves without residual
     // assembly (coupling.secant.response_tolerance) where the solid is linear in its loads.
     SecantFluidModel::SolidResponse respond;
+    SecantFluidModel::SolidSolveWithResponse solveAndRespond;
     if (base == SecantFluidModel::Base::Accepted && params.secant.responseTolerance > 0.0 &&
         solid.linearInLoads())
+    {
         respond = [&](const Eigen::MatrixXd& loadChanges)
         {
             ScopedSeconds timer{spent.responseSeconds};
             return Eigen::MatrixXd(
                 solid.interfaceResponse(loadChanges, params.secant.responseTolerance));
         };
+        // the base solve with the columns riding along (one set of MUMPS solve phases)
+        solveAndRespond = [&](const Eigen::VectorXd& load, const Eigen::MatrixXd& loadChanges)
+        {
+            ScopedSeconds timer{spent.solveSeconds};
+            Eigen::MatrixXd responses;
+            const auto report = solid.solveWithResponse(
+                {record.time, record.dt}, {std::vector<double>(load.data(), load.data() + n)},
+                loadChanges, params.secant.responseTolerance, responses);
+            record.newtonIterations += report.newtonIterations;
+            spent.assemblySeconds += report.assemblySeconds;
+            if (!report.converged)
+                throw std::runtime_error(report.message);
+            return std::make_pair(toVector(solid.wettedNodeDisplacements()), responses);
+        };
+    }
     ScopedSeconds solidTime{summary.solidSeconds};
-    auto prediction = secant.predict(columns, solveSolid, base, respond);
+    auto prediction = secant.predict(columns, solveSolid, base, respond, solveAndRespond);
     if (cost)
         *cost = spent;
     return prediction;
@@ -584,7 +601,10 @@ std::optional<LevelAttempt> CoupledDriver::Impl::predictSecant(LevelRecord& reco
         note << std::setprecision(3) << "secant predictor (" << prediction->columns << " columns; "
              << prediction->solidSolves << " solid solves " << cost.solveSeconds << " s (assembly "
              << cost.assemblySeconds << " s), " << prediction->responseColumns
-             << " response columns " << cost.responseSeconds << " s)";
+             << " response columns " << cost.responseSeconds << " s"
+             << (prediction->responseColumns > 0 && cost.responseSeconds == 0.0
+                     ? " apart: solved with the base solve)"
+                     : ")");
         predictorNote = note.str();
     }
     else if (twoLevels)

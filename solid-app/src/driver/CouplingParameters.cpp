@@ -112,8 +112,7 @@ CouplingParameters CouplingParameters::parse(const config::Block& b)
         p.secant.maxColumns = m->integer("max_columns", p.secant.maxColumns);
         p.secant.levels = m->integer("levels", p.secant.levels);
         p.secant.couplingIterations = m->flag("coupling_iterations", p.secant.couplingIterations);
-        p.secant.responseTolerance =
-            m->number("response_tolerance", p.secant.responseTolerance);
+        p.secant.responseTolerance = m->number("response_tolerance", p.secant.responseTolerance);
         if (!(p.secant.responseTolerance >= 0.0 && p.secant.responseTolerance <= 0.1))
             m->fail("response_tolerance",
                     "must be in [0, 0.1] (a relative residual; 0: a full solid solve per column)");

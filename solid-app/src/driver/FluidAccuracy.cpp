@@ -11,7 +11,8 @@ namespace fsi::driver
 
 void FluidAccuracyParameters::validate() const
 {
-    auto fail = [](const char* key, const char* fix, double got) {
+    auto fail = [](const char* key, const char* fix, double got)
+    {
         char text[256];
         std::snprintf(text, sizeof text, "coupling.fluid_accuracy.%s %s (got %g)", key, fix, got);
         throw std::runtime_error(text);
@@ -23,7 +24,8 @@ void FluidAccuracyParameters::validate() const
     if (!(forcingFactor > 0.0 && std::isfinite(forcingFactor)))
         fail("forcing_factor", "must be > 0, e.g. 0.1", forcingFactor);
     if (!(maxForceTolerance >= finalForceTolerance && maxForceTolerance < 1.0))
-        fail("max_force_tolerance", "must be in [final.force_tolerance, 1), e.g. 1e-2", maxForceTolerance);
+        fail("max_force_tolerance", "must be in [final.force_tolerance, 1), e.g. 1e-2",
+             maxForceTolerance);
     if (minIterations < 1)
         fail("min_iterations", "must be >= 1", minIterations);
 }

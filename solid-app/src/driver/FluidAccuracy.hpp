@@ -13,10 +13,10 @@
 // force error the fluid leaves: it stops once |F_k - F_{k-1}| rho / (1 - rho) <= eta |F_k|, rho
 // the observed contraction of its force changes (the error left by a linearly converging
 // iteration; a per-iteration change alone understates it by 1/(1 - rho), 20-50x for SIMPLE
-// here), after min_iterations. A solve that meets eta = final.force_tolerance (and final.residual_drop) is
-// "final"; a level is accepted only when its interface residual meets the tolerance AND its last
-// fluid solve was final and converged. Without the block the fluid uses its own fsiDict
-// `coupled` controls for every solve (each solve then counts as final).
+// here), after min_iterations. A solve that meets eta = final.force_tolerance (and
+// final.residual_drop) is "final"; a level is accepted only when its interface residual meets the
+// tolerance AND its last fluid solve was final and converged. Without the block the fluid uses its
+// own fsiDict `coupled` controls for every solve (each solve then counts as final).
 #pragma once
 
 #include <string>

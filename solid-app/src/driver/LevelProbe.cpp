@@ -39,10 +39,13 @@ std::string WatchedNodeProbe::describe(const std::vector<double>& v) const
 SectionAngleProbe::SectionAngleProbe(const SectionAngleParameters& params, const mesh::Mesh& mesh)
     : params_(params)
 {
-    leading_ = mesh.nearestNode({params.leadingEdge[0], params.leadingEdge[1], params.leadingEdge[2]});
-    trailing_ = mesh.nearestNode({params.trailingEdge[0], params.trailingEdge[1], params.trailingEdge[2]});
+    leading_ =
+        mesh.nearestNode({params.leadingEdge[0], params.leadingEdge[1], params.leadingEdge[2]});
+    trailing_ =
+        mesh.nearestNode({params.trailingEdge[0], params.trailingEdge[1], params.trailingEdge[2]});
     if (leading_ == trailing_)
-        throw std::runtime_error("coupling.section_angle: leading and trailing edge map to the same node");
+        throw std::runtime_error(
+            "coupling.section_angle: leading and trailing edge map to the same node");
 }
 
 // The chord from trailing to leading edge, deformed, in the plane (reference chord direction,
@@ -51,7 +54,8 @@ std::vector<double> SectionAngleProbe::values(const fe::StructuralSolver& solid)
 {
     const auto& x = solid.mesh().nodes;
     const Eigen::Vector3d xl = x.col(leading_), xt = x.col(trailing_);
-    const Eigen::Vector3d lift(params_.liftDirection[0], params_.liftDirection[1], params_.liftDirection[2]);
+    const Eigen::Vector3d lift(params_.liftDirection[0], params_.liftDirection[1],
+                               params_.liftDirection[2]);
     Eigen::Vector3d chord = xl - xt;
     chord -= chord.dot(lift) * lift;
     chord.normalize();
@@ -92,7 +96,8 @@ std::vector<double> NodeStressProbe::values(const fe::StructuralSolver& solid) c
 
 std::vector<std::string> ReactionProbe::columns() const
 {
-    return {"reaction_" + surface_ + "_x", "reaction_" + surface_ + "_y", "reaction_" + surface_ + "_z"};
+    return {"reaction_" + surface_ + "_x", "reaction_" + surface_ + "_y",
+            "reaction_" + surface_ + "_z"};
 }
 
 std::vector<double> ReactionProbe::values(const fe::StructuralSolver& solid) const

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <tuple>
 
 namespace fsi::driver
 {
@@ -162,7 +163,8 @@ std::vector<int> SecantFluidModel::selectColumns(Base which, double minColumnRms
 
 std::optional<SecantFluidModel::Prediction>
 SecantFluidModel::predict(const std::vector<int>& columns, const SolidSolve& solve, Base which,
-                          const SolidResponse& respond)
+                          const SolidResponse& respond,
+                          const SolidSolveWithResponse& solveAndRespond)
 {
     const int k = static_cast<int>(columns.size());
     if (k == 0)
@@ -182,23 +184,28 @@ SecantFluidModel::predict(const std::vector<int>& columns, const SolidSolve& sol
     // Z_j = S(F_b + W_j) - S(F_b) = S(F_b) - S(F_s). A sample whose answer is kept costs no solve;
     // otherwise S(F_b + W_j) is solved (as the level predictor always did) and S(F_s) kept.
     Sample& origin = samples_[b];
-    if (origin.response.size() == 0)
-    {
-        origin.response = solve(origin.force);
-        ++p.solidSolves;
-    }
-    const Eigen::VectorXd response = origin.response;
-    Eigen::MatrixXd z(response.size(), k);
     std::vector<int> unknown; // columns whose sample has no answer at this level
     for (int j = 0; j < k; ++j)
         if (samples_[columns[j]].response.size() == 0)
             unknown.push_back(j);
-    if (respond && !unknown.empty())
+    Eigen::MatrixXd loads(w.rows(), static_cast<Eigen::Index>(unknown.size()));
+    for (std::size_t i = 0; i < unknown.size(); ++i)
+        loads.col(static_cast<Eigen::Index>(i)) = w.col(unknown[i]);
+    const bool respondToUnknown = respond && !unknown.empty();
+    std::optional<Eigen::MatrixXd> answered; // by the base solve
+    if (origin.response.size() == 0)
     {
-        Eigen::MatrixXd loads(w.rows(), static_cast<Eigen::Index>(unknown.size()));
-        for (std::size_t i = 0; i < unknown.size(); ++i)
-            loads.col(static_cast<Eigen::Index>(i)) = w.col(unknown[i]);
-        const Eigen::MatrixXd answers = respond(loads);
+        if (respondToUnknown && solveAndRespond)
+            std::tie(origin.response, answered.emplace()) = solveAndRespond(origin.force, loads);
+        else
+            origin.response = solve(origin.force);
+        ++p.solidSolves;
+    }
+    const Eigen::VectorXd response = origin.response;
+    Eigen::MatrixXd z(response.size(), k);
+    if (respondToUnknown)
+    {
+        const Eigen::MatrixXd answers = answered ? *answered : respond(loads);
         if (answers.rows() != response.size() || answers.cols() != loads.cols())
             throw std::logic_error("SecantFluidModel: the solid response has the wrong size");
         for (std::size_t i = 0; i < unknown.size(); ++i)

@@ -30,6 +30,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace fsi::driver
@@ -95,6 +96,10 @@ public:
     // the new level, to predictor accuracy: the solid's linear response A W (collective when
     // the solid is distributed). Throws std::runtime_error when it fails.
     using SolidResponse = std::function<Eigen::MatrixXd(const Eigen::MatrixXd& loadChanges)>;
+    // solve(loads) and respond(loadChanges) in one call (the solid's solve with its linear
+    // responses riding along: fe::StructuralSolver::solveWithResponse).
+    using SolidSolveWithResponse = std::function<std::pair<Eigen::VectorXd, Eigen::MatrixXd>(
+        const Eigen::VectorXd& loads, const Eigen::MatrixXd& loadChanges)>;
 
     struct Prediction
     {
@@ -113,12 +118,13 @@ public:
     // whose answer at this level is not known yet (at most 1 + columns.size() times; none when
     // columns is empty). With respond (the solid linear in its loads), the unknown columns are
     // answered by one respond() call instead of a solve() each: Z = A W to respond's accuracy,
-    // a predictor's, so those answers are not kept for later steps. Returns nullopt when
-    // columns is empty or the model is degenerate (I - V^+ Z singular: the coupled model has
-    // no unique state, e.g. past static divergence).
+    // a predictor's, so those answers are not kept for later steps; with solveAndRespond as
+    // well, a base solve and that respond() call are one solveAndRespond() call. Returns
+    // nullopt when columns is empty or the model is degenerate (I - V^+ Z singular: the coupled
+    // model has no unique state, e.g. past static divergence).
     std::optional<Prediction> predict(const std::vector<int>& columns, const SolidSolve& solve,
-                                      Base base = Base::Accepted,
-                                      const SolidResponse& respond = {});
+                                      Base base = Base::Accepted, const SolidResponse& respond = {},
+                                      const SolidSolveWithResponse& solveAndRespond = {});
 
 private:
     int base(Base which) const; // index of the base sample (-1: none)

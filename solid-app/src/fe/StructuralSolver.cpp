@@ -657,7 +657,10 @@ bool StructuralSolver::newton(const std::vector<double>& fext, double factor,
                 if (equation_[dof] >= 0)
                     du[equation_[dof]] = R[dof];
         const double linearStart = MPI_Wtime();
-        linear_->solveSummedRhs(du, linearSolveAllowance(ref));
+        if (pendingResponse_ && !pendingResponse_->answered && linearProblem_)
+            solveStepWithResponse(du, linearSolveAllowance(ref)); // the columns ride along
+        else
+            linear_->solveSummedRhs(du, linearSolveAllowance(ref));
         linearSeconds_ += MPI_Wtime() - linearStart;
         // line search (energy form, Crisfield): find alpha with s(alpha) = du . R(u + alpha du)
         // small against s(0) = du . R(u) > 0; the residual NORM may grow on a good Newton step
@@ -879,12 +882,10 @@ void StructuralSolver::projectOnLevelSolves(std::vector<double>& rhs, std::vecto
     }
 }
 
-Eigen::MatrixXd StructuralSolver::interfaceResponse(const Eigen::MatrixXd& loadChanges,
-                                                    double relativeTolerance)
+std::vector<double> StructuralSolver::responseRightHandSides(const Eigen::MatrixXd& loadChanges,
+                                                             double relativeTolerance,
+                                                             std::vector<double>& allowances) const
 {
-    if (!linearProblem_ || !lastConverged_ || !linearUpdateReady_)
-        throw std::logic_error("StructuralSolver::interfaceResponse needs a linear problem and a "
-                               "converged solve at the level");
     const auto wetted = static_cast<Eigen::Index>(wettedNodes_.size());
     if (loadChanges.rows() != 3 * wetted)
         throw std::invalid_argument(
@@ -893,23 +894,17 @@ Eigen::MatrixXd StructuralSolver::interfaceResponse(const Eigen::MatrixXd& loadC
     if (!(relativeTolerance > 0.0 && relativeTolerance < 1.0))
         throw std::invalid_argument(
             "StructuralSolver::interfaceResponse: relativeTolerance must be in (0, 1)");
-    // the load changes on the free dofs, column-major (rank 0 holds them: the others' part of
-    // a summed right-hand side would be zero)
+    // rank 0 holds the right-hand sides: the others' part of a summed one would be zero
     const int columns = static_cast<int>(loadChanges.cols());
     const std::size_t free = static_cast<std::size_t>(numFree_);
-    // free equation of interface row r = 3 k + i (wetted node k, component i); -1: prescribed
-    const auto equationOf = [&](Eigen::Index r) {
-        return equation_[3 * wettedNodes_[static_cast<std::size_t>(r / 3)] +
-                         static_cast<int>(r % 3)];
-    };
     std::vector<double> rhs(rank_ == 0 ? free * columns : 0, 0.0);
-    std::vector<double> allowances(columns, 0.0);
+    allowances.assign(columns, 0.0);
     for (int j = 0; j < columns; ++j)
     {
         double norm2 = 0.0;
         for (Eigen::Index r = 0; r < loadChanges.rows(); ++r)
         {
-            const int eq = equationOf(r);
+            const int eq = wettedEquation(r);
             if (eq < 0)
                 continue;
             const double f = loadChanges(r, j);
@@ -921,6 +916,32 @@ Eigen::MatrixXd StructuralSolver::interfaceResponse(const Eigen::MatrixXd& loadC
             throw std::runtime_error("StructuralSolver::interfaceResponse: non-finite loads");
         allowances[j] = relativeTolerance * std::sqrt(norm2);
     }
+    return rhs;
+}
+
+Eigen::MatrixXd StructuralSolver::wettedRowsOf(const std::vector<double>& solutions, int first,
+                                               int columns) const
+{
+    const std::size_t free = static_cast<std::size_t>(numFree_);
+    const auto rows = static_cast<Eigen::Index>(3 * wettedNodes_.size());
+    Eigen::MatrixXd response = Eigen::MatrixXd::Zero(rows, columns);
+    for (int j = 0; j < columns; ++j)
+        for (Eigen::Index r = 0; r < rows; ++r)
+            if (const int eq = wettedEquation(r); eq >= 0)
+                response(r, j) = solutions[free * (first + j) + eq];
+    return response;
+}
+
+Eigen::MatrixXd StructuralSolver::interfaceResponse(const Eigen::MatrixXd& loadChanges,
+                                                    double relativeTolerance)
+{
+    if (!linearProblem_ || !lastConverged_ || !linearUpdateReady_)
+        throw std::logic_error("StructuralSolver::interfaceResponse needs a linear problem and a "
+                               "converged solve at the level");
+    std::vector<double> allowances;
+    std::vector<double> rhs = responseRightHandSides(loadChanges, relativeTolerance, allowances);
+    const int columns = static_cast<int>(loadChanges.cols());
+    const std::size_t free = static_cast<std::size_t>(numFree_);
     const double start = MPI_Wtime();
     const bool stale = linear_->factorIsStale();
     linear_->solveMany(rhs, columns, allowances);
@@ -932,13 +953,63 @@ Eigen::MatrixXd StructuralSolver::interfaceResponse(const Eigen::MatrixXd& loadC
         rememberLevelSolve(
             std::vector<double>(rhs.begin() + static_cast<std::ptrdiff_t>(free * j),
                                 rhs.begin() + static_cast<std::ptrdiff_t>(free * (j + 1))));
-    Eigen::MatrixXd response = Eigen::MatrixXd::Zero(loadChanges.rows(), columns);
-    for (int j = 0; j < columns; ++j)
-        for (Eigen::Index r = 0; r < loadChanges.rows(); ++r)
-            if (const int eq = equationOf(r); eq >= 0)
-                response(r, j) = rhs[free * j + eq];
     linearSeconds_ += MPI_Wtime() - start;
-    return response;
+    return wettedRowsOf(rhs, 0, columns);
+}
+
+SolveReport StructuralSolver::solveWithResponse(const material::TimeStep& step,
+                                                const InterfaceLoads& interface,
+                                                const Eigen::MatrixXd& loadChanges,
+                                                double relativeTolerance,
+                                                Eigen::MatrixXd& responses)
+{
+    if (!linearProblem_)
+        throw std::logic_error("StructuralSolver::solveWithResponse needs a linear problem");
+    std::vector<double> unused;
+    responseRightHandSides(loadChanges, relativeTolerance, unused); // the checks, before solving
+    responses.resize(0, 0);
+    PendingResponse pending{&loadChanges, relativeTolerance, &responses, false};
+    pendingResponse_ = &pending;
+    SolveReport report;
+    try
+    {
+        report = solve(step, interface);
+    }
+    catch (...)
+    {
+        pendingResponse_ = nullptr;
+        throw;
+    }
+    pendingResponse_ = nullptr;
+    if (!report.converged)
+        responses.resize(0, 0);
+    else if (!pending.answered)
+        responses = interfaceResponse(loadChanges, relativeTolerance);
+    return report;
+}
+
+void StructuralSolver::solveStepWithResponse(std::vector<double>& du, double allowance)
+{
+    PendingResponse& pending = *pendingResponse_;
+    std::vector<double> allowances;
+    std::vector<double> rhs =
+        responseRightHandSides(*pending.loadChanges, pending.relativeTolerance, allowances);
+    const int columns = static_cast<int>(pending.loadChanges->cols());
+    const std::size_t free = static_cast<std::size_t>(numFree_);
+    if (rank_ == 0)
+        rhs.insert(rhs.begin(), du.begin(), du.end()); // the step first
+    allowances.insert(allowances.begin(), allowance);
+    const bool stale = linear_->factorIsStale();
+    linear_->solveMany(rhs, columns + 1, allowances);
+    linear_->broadcastFromRoot(rhs);
+    std::copy(rhs.begin(), rhs.begin() + static_cast<std::ptrdiff_t>(free), du.begin());
+    *pending.responses = wettedRowsOf(rhs, 1, columns);
+    responseColumns_ += columns;
+    for (int j = 1; stale && j <= columns; ++j)
+        rememberLevelSolve(
+            std::vector<double>(rhs.begin() + static_cast<std::ptrdiff_t>(free * j),
+                                rhs.begin() + static_cast<std::ptrdiff_t>(free * (j + 1))));
+    pending.answered = true;
 }
 
 SolveReport StructuralSolver::solveLevel(const material::TimeStep& step,

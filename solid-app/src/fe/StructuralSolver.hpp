@@ -159,7 +159,19 @@ public:
     // Collective; loadChanges the same on every rank.
     // Pre: linearInLoads() and the last solve() converged (throws std::logic_error otherwise).
     Eigen::MatrixXd interfaceResponse(const Eigen::MatrixXd& loadChanges, double relativeTolerance);
-    // Linear solves done by interfaceResponse() since construction (columns).
+    // solve() and then interfaceResponse() in one call: the columns ride along with the solve's
+    // Newton step (one lockstep solve, so one set of MUMPS solve phases for the step and the
+    // columns: on a stale factor a CG iteration reads the factor once for all of them). The
+    // same results to the tolerances asked. A solve that needs no Newton step of its own (its
+    // start already converged) answers the columns after it, as interfaceResponse() does;
+    // one that does not converge leaves responses empty. Collective.
+    // Pre: linearInLoads() (throws std::logic_error otherwise); loadChanges and
+    // relativeTolerance as for interfaceResponse().
+    SolveReport solveWithResponse(const material::TimeStep& step, const InterfaceLoads& interface,
+                                  const Eigen::MatrixXd& loadChanges, double relativeTolerance,
+                                  Eigen::MatrixXd& responses);
+    // Linear solves done by interfaceResponse() and solveWithResponse() since construction
+    // (columns).
     int interfaceResponseColumns() const { return responseColumns_; }
     // This rank's part of the committed state (for a checkpoint).
     CommittedState committedState() const;
@@ -229,6 +241,36 @@ private:
     void rememberLevelSolve(std::vector<double> x);
     void projectOnLevelSolves(std::vector<double>& rhs, std::vector<double>& x) const;
     static constexpr int kLevelSolvesKept = 12;
+    // interfaceResponse()'s columns: the checked load changes on the free dofs (column-major,
+    // rank 0; empty elsewhere), each column's allowance relativeTolerance |b_j|, and, after the
+    // solve, the wetted rows of `columns` solutions starting at column `first` of `solutions`
+    // (free dofs, column-major, replicated). Throws std::invalid_argument for a wrong size or
+    // tolerance, std::runtime_error for non-finite loads.
+    std::vector<double> responseRightHandSides(const Eigen::MatrixXd& loadChanges,
+                                               double relativeTolerance,
+                                               std::vector<double>& allowances) const;
+    Eigen::MatrixXd wettedRowsOf(const std::vector<double>& solutions, int first,
+                                 int columns) const;
+    // The free equation of interface row r = 3 k + i (wetted node k, component i); -1 when
+    // that dof is prescribed.
+    int wettedEquation(Eigen::Index r) const
+    {
+        return equation_[3 * static_cast<std::size_t>(
+                                 wettedNodes_[static_cast<std::size_t>(r / 3)]) +
+                         static_cast<std::size_t>(r % 3)];
+    }
+    // A solveWithResponse() in progress: newton() answers it with its first linear solve.
+    struct PendingResponse
+    {
+        const Eigen::MatrixXd* loadChanges = nullptr;
+        double relativeTolerance = 0.0;
+        Eigen::MatrixXd* responses = nullptr;
+        bool answered = false;
+    };
+    PendingResponse* pendingResponse_ = nullptr;
+    // The Newton step K du = rhs (rhs on rank 0, du on every rank) with the pending response
+    // columns in the same lockstep solve.
+    void solveStepWithResponse(std::vector<double>& du, double allowance);
     bool assemble(const std::vector<double>& u, bool withMatrix, std::vector<double>& fint);
     // Linear problem, isotropic law: values_ = lambda K_lambda + mu K_mu for step_ (the parts
     // assembled at the first call). False when the law's tangent is not isotropic (then the
