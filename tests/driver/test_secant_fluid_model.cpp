@@ -59,6 +59,15 @@ struct AffineProblem
     {
         return model.predict(columns, [&](const Eigen::VectorXd& f) { return solid(f); });
     }
+    // Level 0: three fluid solves at interfaces that differ in the fluid's two directions (and
+    // nothing else), the last one accepted; returns the model's columns.
+    std::vector<int> sampleBothDirections(SecantFluidModel& model)
+    {
+        const Eigen::VectorXd start = Eigen::VectorXd::Random(kSize);
+        sampleLevel(model, 3,
+                    [&] { return Eigen::VectorXd(start + right * Eigen::Vector2d::Random()); });
+        return model.selectColumns();
+    }
     Eigen::VectorXd fixedPoint() const
     {
         const Eigen::MatrixXd a = Eigen::MatrixXd::Identity(kSize, kSize) - c * j;
@@ -71,12 +80,7 @@ TEST(SecantFluidModel, ExactForAnAffineFluidOnceItsDirectionsAreSampled)
 {
     AffineProblem p;
     SecantFluidModel model(3);
-    // Level 0: three fluid solves at interfaces that differ in the fluid's two directions (and
-    // nothing else); the last one is accepted.
-    const Eigen::VectorXd start = Eigen::VectorXd::Random(kSize);
-    p.sampleLevel(model, 3,
-                  [&] { return Eigen::VectorXd(start + p.right * Eigen::Vector2d::Random()); });
-    const auto columns = model.selectColumns();
+    const auto columns = p.sampleBothDirections(model);
     ASSERT_EQ(columns.size(), 2u);
     const auto prediction = p.predict(model, columns);
     ASSERT_TRUE(prediction.has_value());
@@ -142,10 +146,7 @@ TEST(SecantFluidModel, BaseSolveAndColumnsInOneCall)
 {
     AffineProblem p;
     SecantFluidModel model(3);
-    const Eigen::VectorXd start = Eigen::VectorXd::Random(kSize);
-    p.sampleLevel(model, 3,
-                  [&] { return Eigen::VectorXd(start + p.right * Eigen::Vector2d::Random()); });
-    const auto columns = model.selectColumns();
+    const auto columns = p.sampleBothDirections(model);
     ASSERT_EQ(columns.size(), 2u);
     int responds = 0, together = 0;
     const SecantFluidModel::SolidResponse respond = [&](const Eigen::MatrixXd& w)
