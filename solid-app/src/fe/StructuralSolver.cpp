@@ -882,9 +882,9 @@ void StructuralSolver::projectOnLevelSolves(std::vector<double>& rhs, std::vecto
     }
 }
 
-std::vector<double> StructuralSolver::responseRightHandSides(const Eigen::MatrixXd& loadChanges,
-                                                             double relativeTolerance,
-                                                             std::vector<double>& allowances) const
+StructuralSolver::ResponseColumns
+StructuralSolver::responseColumns(const Eigen::MatrixXd& loadChanges,
+                                  double relativeTolerance) const
 {
     const auto wetted = static_cast<Eigen::Index>(wettedNodes_.size());
     if (loadChanges.rows() != 3 * wetted)
@@ -895,11 +895,12 @@ std::vector<double> StructuralSolver::responseRightHandSides(const Eigen::Matrix
         throw std::invalid_argument(
             "StructuralSolver::interfaceResponse: relativeTolerance must be in (0, 1)");
     // rank 0 holds the right-hand sides: the others' part of a summed one would be zero
-    const int columns = static_cast<int>(loadChanges.cols());
+    ResponseColumns c;
+    c.count = static_cast<int>(loadChanges.cols());
     const std::size_t free = static_cast<std::size_t>(numFree_);
-    std::vector<double> rhs(rank_ == 0 ? free * columns : 0, 0.0);
-    allowances.assign(columns, 0.0);
-    for (int j = 0; j < columns; ++j)
+    c.rhs.assign(rank_ == 0 ? free * c.count : 0, 0.0);
+    c.allowances.assign(c.count, 0.0);
+    for (int j = 0; j < c.count; ++j)
     {
         double norm2 = 0.0;
         for (Eigen::Index r = 0; r < loadChanges.rows(); ++r)
@@ -910,13 +911,31 @@ std::vector<double> StructuralSolver::responseRightHandSides(const Eigen::Matrix
             const double f = loadChanges(r, j);
             norm2 += f * f;
             if (rank_ == 0)
-                rhs[free * j + eq] = f;
+                c.rhs[free * j + eq] = f;
         }
         if (!std::isfinite(norm2))
             throw std::runtime_error("StructuralSolver::interfaceResponse: non-finite loads");
-        allowances[j] = relativeTolerance * std::sqrt(norm2);
+        c.allowances[j] = relativeTolerance * std::sqrt(norm2);
     }
-    return rhs;
+    return c;
+}
+
+Eigen::MatrixXd StructuralSolver::solveResponseColumns(std::vector<double>& rhs,
+                                                       std::vector<double> allowances, int leading,
+                                                       int count)
+{
+    const std::size_t free = static_cast<std::size_t>(numFree_);
+    const bool stale = linear_->factorIsStale();
+    linear_->solveMany(rhs, leading + count, allowances);
+    linear_->broadcastFromRoot(rhs);
+    responseColumns_ += count;
+    // on a stale factor the columns' answers serve the level's later solves
+    // (projectOnLevelSolves)
+    for (int j = leading; stale && j < leading + count; ++j)
+        rememberLevelSolve(
+            std::vector<double>(rhs.begin() + static_cast<std::ptrdiff_t>(free * j),
+                                rhs.begin() + static_cast<std::ptrdiff_t>(free * (j + 1))));
+    return wettedRowsOf(rhs, leading, count);
 }
 
 Eigen::MatrixXd StructuralSolver::wettedRowsOf(const std::vector<double>& solutions, int first,
@@ -938,23 +957,11 @@ Eigen::MatrixXd StructuralSolver::interfaceResponse(const Eigen::MatrixXd& loadC
     if (!linearProblem_ || !lastConverged_ || !linearUpdateReady_)
         throw std::logic_error("StructuralSolver::interfaceResponse needs a linear problem and a "
                                "converged solve at the level");
-    std::vector<double> allowances;
-    std::vector<double> rhs = responseRightHandSides(loadChanges, relativeTolerance, allowances);
-    const int columns = static_cast<int>(loadChanges.cols());
-    const std::size_t free = static_cast<std::size_t>(numFree_);
+    ResponseColumns c = responseColumns(loadChanges, relativeTolerance);
     const double start = MPI_Wtime();
-    const bool stale = linear_->factorIsStale();
-    linear_->solveMany(rhs, columns, allowances);
-    linear_->broadcastFromRoot(rhs);
-    responseColumns_ += columns;
-    // on a stale factor the columns' answers serve the level's later solves
-    // (projectOnLevelSolves)
-    for (int j = 0; stale && j < columns; ++j)
-        rememberLevelSolve(
-            std::vector<double>(rhs.begin() + static_cast<std::ptrdiff_t>(free * j),
-                                rhs.begin() + static_cast<std::ptrdiff_t>(free * (j + 1))));
+    Eigen::MatrixXd response = solveResponseColumns(c.rhs, std::move(c.allowances), 0, c.count);
     linearSeconds_ += MPI_Wtime() - start;
-    return wettedRowsOf(rhs, 0, columns);
+    return response;
 }
 
 SolveReport StructuralSolver::solveWithResponse(const material::TimeStep& step,
@@ -965,50 +972,41 @@ SolveReport StructuralSolver::solveWithResponse(const material::TimeStep& step,
 {
     if (!linearProblem_)
         throw std::logic_error("StructuralSolver::solveWithResponse needs a linear problem");
-    std::vector<double> unused;
-    responseRightHandSides(loadChanges, relativeTolerance, unused); // the checks, before solving
+    const ResponseColumns columns = responseColumns(loadChanges, relativeTolerance); // checked
     responses.resize(0, 0);
-    PendingResponse pending{&loadChanges, relativeTolerance, &responses, false};
+    PendingResponse pending{&columns, &responses, false};
     pendingResponse_ = &pending;
-    SolveReport report;
-    try
+    struct Clear // the pending request ends with this call, also when solve() throws
     {
-        report = solve(step, interface);
-    }
-    catch (...)
+        PendingResponse*& pending;
+        ~Clear() { pending = nullptr; }
+    } clear{pendingResponse_};
+    const SolveReport report = solve(step, interface);
+    if (report.converged && !pending.answered) // no Newton step of its own: the columns alone
     {
-        pendingResponse_ = nullptr;
-        throw;
+        std::vector<double> rhs = columns.rhs;
+        responses = solveResponseColumns(rhs, columns.allowances, 0, columns.count);
     }
-    pendingResponse_ = nullptr;
-    if (!report.converged)
+    else if (!report.converged)
         responses.resize(0, 0);
-    else if (!pending.answered)
-        responses = interfaceResponse(loadChanges, relativeTolerance);
     return report;
 }
 
 void StructuralSolver::solveStepWithResponse(std::vector<double>& du, double allowance)
 {
     PendingResponse& pending = *pendingResponse_;
-    std::vector<double> allowances;
-    std::vector<double> rhs =
-        responseRightHandSides(*pending.loadChanges, pending.relativeTolerance, allowances);
-    const int columns = static_cast<int>(pending.loadChanges->cols());
-    const std::size_t free = static_cast<std::size_t>(numFree_);
-    if (rank_ == 0)
-        rhs.insert(rhs.begin(), du.begin(), du.end()); // the step first
-    allowances.insert(allowances.begin(), allowance);
-    const bool stale = linear_->factorIsStale();
-    linear_->solveMany(rhs, columns + 1, allowances);
-    linear_->broadcastFromRoot(rhs);
-    std::copy(rhs.begin(), rhs.begin() + static_cast<std::ptrdiff_t>(free), du.begin());
-    *pending.responses = wettedRowsOf(rhs, 1, columns);
-    responseColumns_ += columns;
-    for (int j = 1; stale && j <= columns; ++j)
-        rememberLevelSolve(
-            std::vector<double>(rhs.begin() + static_cast<std::ptrdiff_t>(free * j),
-                                rhs.begin() + static_cast<std::ptrdiff_t>(free * (j + 1))));
+    const ResponseColumns& columns = *pending.columns;
+    std::vector<double> rhs;
+    if (rank_ == 0) // the step first, then the columns
+    {
+        rhs.reserve(du.size() + columns.rhs.size());
+        rhs.insert(rhs.end(), du.begin(), du.end());
+        rhs.insert(rhs.end(), columns.rhs.begin(), columns.rhs.end());
+    }
+    std::vector<double> allowances{allowance};
+    allowances.insert(allowances.end(), columns.allowances.begin(), columns.allowances.end());
+    *pending.responses = solveResponseColumns(rhs, std::move(allowances), 1, columns.count);
+    std::copy(rhs.begin(), rhs.begin() + static_cast<std::ptrdiff_t>(du.size()), du.begin());
     pending.answered = true;
 }
 

@@ -242,13 +242,26 @@ private:
     void projectOnLevelSolves(std::vector<double>& rhs, std::vector<double>& x) const;
     static constexpr int kLevelSolvesKept = 12;
     // interfaceResponse()'s columns: the checked load changes on the free dofs (column-major,
-    // rank 0; empty elsewhere), each column's allowance relativeTolerance |b_j|, and, after the
-    // solve, the wetted rows of `columns` solutions starting at column `first` of `solutions`
-    // (free dofs, column-major, replicated). Throws std::invalid_argument for a wrong size or
-    // tolerance, std::runtime_error for non-finite loads.
-    std::vector<double> responseRightHandSides(const Eigen::MatrixXd& loadChanges,
-                                               double relativeTolerance,
-                                               std::vector<double>& allowances) const;
+    // rank 0; empty elsewhere) and each column's allowance relativeTolerance |b_j|. Throws
+    // std::invalid_argument for a wrong size or tolerance, std::runtime_error for non-finite
+    // loads.
+    struct ResponseColumns
+    {
+        std::vector<double> rhs;
+        std::vector<double> allowances;
+        int count = 0;
+    };
+    ResponseColumns responseColumns(const Eigen::MatrixXd& loadChanges,
+                                    double relativeTolerance) const;
+    // One lockstep solve of `leading` right-hand sides (rank 0; e.g. a Newton step, with
+    // their allowances first) followed by the response columns; rhs holds every solution
+    // afterwards, on every rank. Returns the response columns' wetted rows; on a stale factor
+    // their solutions are kept for the level's later solves (rememberLevelSolve). Not timed
+    // (the callers count linearSeconds_). Collective.
+    Eigen::MatrixXd solveResponseColumns(std::vector<double>& rhs, std::vector<double> allowances,
+                                         int leading, int count);
+    // The wetted rows of `columns` solutions starting at column `first` of `solutions` (free
+    // dofs, column-major, replicated).
     Eigen::MatrixXd wettedRowsOf(const std::vector<double>& solutions, int first,
                                  int columns) const;
     // The free equation of interface row r = 3 k + i (wetted node k, component i); -1 when
@@ -262,8 +275,7 @@ private:
     // A solveWithResponse() in progress: newton() answers it with its first linear solve.
     struct PendingResponse
     {
-        const Eigen::MatrixXd* loadChanges = nullptr;
-        double relativeTolerance = 0.0;
+        const ResponseColumns* columns = nullptr;
         Eigen::MatrixXd* responses = nullptr;
         bool answered = false;
     };
