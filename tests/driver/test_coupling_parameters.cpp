@@ -130,6 +130,13 @@ TEST(CouplingParameters, BadInputNamesTheKey)
     EXPECT_NEAR(parseText(minimal).secant.responseTolerance, 1e-2, 1e-15); // the default
     EXPECT_EQ(parseText(minimal + "  secant: {response_tolerance: 0}\n").secant.responseTolerance,
               0.0);
+    EXPECT_NE(errorOf(minimal + "  secant: {min_feedback_margin: 1}\n")
+                  .find("coupling.secant.min_feedback_margin"),
+              std::string::npos);
+    EXPECT_EQ(parseText(minimal).secant.minFeedbackMargin, 0.0); // the default: off
+    EXPECT_NEAR(
+        parseText(minimal + "  secant: {min_feedback_margin: 0.01}\n").secant.minFeedbackMargin,
+        0.01, 1e-15);
 }
 
 TEST(CouplingParameters, PartitionOfUnityMappingParsesWithDefaultsAndNamesBadKeys)

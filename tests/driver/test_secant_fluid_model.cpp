@@ -196,6 +196,33 @@ TEST(SecantFluidModel, OneColumnModelsOneDirection)
     EXPECT_GT((prediction->displacement - p.fixedPoint()).norm(), 1e-6);
 }
 
+// The feedback margin is the smallest singular value of I - V^+ Z. With one column v and a
+// fluid and solid that answer a change along v with g times it (Z = g V), it is |1 - g|: a gain
+// of 0.995 (a structure near static divergence) leaves 0.005, and the prediction is still the
+// exact fixed point, 1 / (1 - g) = 200 times the frozen-loads step.
+TEST(SecantFluidModel, FeedbackMarginIsOneMinusTheGainAlongAColumn)
+{
+    const Eigen::VectorXd e = Eigen::VectorXd::Unit(kSize, 3);
+    const double gain = 0.995;
+    const Eigen::VectorXd s0 = 1e-3 * Eigen::VectorXd::Ones(kSize);
+    const auto fluid = [&](const Eigen::VectorXd& u) -> Eigen::VectorXd
+    { return gain * e * e.dot(u); }; // load along e, proportional to the deflection along e
+    const auto solid = [&](const Eigen::VectorXd& f) -> Eigen::VectorXd { return s0 + f; };
+    SecantFluidModel model(1);
+    for (const double a : {0.0, 2e-3})
+    {
+        const Eigen::VectorXd u = a * e;
+        model.addSample(u, fluid(u));
+    }
+    model.acceptLevel();
+    const auto prediction = model.predict(model.selectColumns(), solid);
+    ASSERT_TRUE(prediction.has_value());
+    EXPECT_NEAR(prediction->feedbackMargin, 1.0 - gain, 1e-12);
+    Eigen::VectorXd exact = s0;
+    exact(3) = s0(3) / (1.0 - gain); // u = s0 + g e (e.u)
+    EXPECT_LT((prediction->displacement - exact).norm(), 1e-10 * exact.norm());
+}
+
 // No accepted level, or a single sample: no columns, no prediction, no solid solve.
 TEST(SecantFluidModel, NoColumnsWithoutTwoSamples)
 {

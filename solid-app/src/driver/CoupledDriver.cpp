@@ -594,19 +594,27 @@ std::optional<LevelAttempt> CoupledDriver::Impl::predictSecant(LevelRecord& reco
                             std::string("the secant predictor's solid solve failed: ") + e.what(),
                             0};
     }
+    int trusted = prediction && prediction->feedbackMargin >= params.secant.minFeedbackMargin;
+    MPI_Bcast(&trusted, 1, MPI_INT, 0, comm); // every rank takes rank 0's choice
     if (prediction)
     {
-        iterate = prediction->displacement;
         std::ostringstream note;
         note << std::setprecision(3) << "secant predictor (" << prediction->columns << " columns; "
              << prediction->solidSolves << " solid solves " << cost.solveSeconds << " s (assembly "
              << cost.assemblySeconds << " s), " << prediction->responseColumns
              << " response columns " << cost.responseSeconds << " s"
              << (prediction->responseColumns > 0 && cost.responseSeconds == 0.0
-                     ? " apart: solved with the base solve)"
-                     : ")");
+                     ? " apart: solved with the base solve"
+                     : "")
+             << "; feedback margin " << prediction->feedbackMargin << ")";
+        if (!trusted)
+            note << " not trusted (margin < secant.min_feedback_margin "
+                 << params.secant.minFeedbackMargin
+                 << "): " << (twoLevels ? "linear extrapolation" : "the last level's interface");
         predictorNote = note.str();
     }
+    if (trusted)
+        iterate = prediction->displacement;
     else if (twoLevels)
         iterate = linearExtrapolation(uLast, uBeforeLast, record.dt / dtLast);
     return std::nullopt;
@@ -632,6 +640,16 @@ std::optional<LevelAttempt> CoupledDriver::Impl::secantStep(LevelRecord& record,
     }
     if (!step)
         return std::nullopt;
+    int distrusted = step->feedbackMargin < params.secant.minFeedbackMargin;
+    MPI_Bcast(&distrusted, 1, MPI_INT, 0, comm); // every rank takes rank 0's choice
+    if (distrusted)
+    {
+        std::ostringstream note;
+        note << std::setprecision(3) << "secant step not trusted (feedback margin "
+             << step->feedbackMargin << " < secant.min_feedback_margin): the accelerator's iterate";
+        line.note = note.str() + (line.note.empty() ? "" : "; " + line.note);
+        return std::nullopt;
+    }
     iterate = step->displacement;
     line.relaxation = std::nan("");
     std::ostringstream note;

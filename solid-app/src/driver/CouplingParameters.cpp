@@ -108,7 +108,8 @@ CouplingParameters CouplingParameters::parse(const config::Block& b)
                  p.predictor);
     if (auto m = b.optionalBlock("secant"))
     {
-        m->allowOnly({"max_columns", "levels", "coupling_iterations", "response_tolerance"});
+        m->allowOnly({"max_columns", "levels", "coupling_iterations", "response_tolerance",
+                      "min_feedback_margin"});
         p.secant.maxColumns = m->integer("max_columns", p.secant.maxColumns);
         p.secant.levels = m->integer("levels", p.secant.levels);
         p.secant.couplingIterations = m->flag("coupling_iterations", p.secant.couplingIterations);
@@ -116,6 +117,10 @@ CouplingParameters CouplingParameters::parse(const config::Block& b)
         if (!(p.secant.responseTolerance >= 0.0 && p.secant.responseTolerance <= 0.1))
             m->fail("response_tolerance",
                     "must be in [0, 0.1] (a relative residual; 0: a full solid solve per column)");
+        p.secant.minFeedbackMargin = m->number("min_feedback_margin", p.secant.minFeedbackMargin);
+        if (!(p.secant.minFeedbackMargin >= 0.0 && p.secant.minFeedbackMargin < 1.0))
+            m->fail("min_feedback_margin",
+                    "must be in [0, 1) (the smallest singular value of I - V^+ Z trusted; 0: any)");
         if (p.secant.maxColumns < 1 || p.secant.maxColumns > 50)
             m->fail("max_columns", "must be in [1, 50] (each column may cost a solid solve)");
         if (p.secant.levels < 1 || p.secant.levels > 20)
@@ -206,7 +211,8 @@ std::string CouplingParameters::echo() const
       << "  predictor: " << predictor << "\n"
       << "  secant: {max_columns: " << secant.maxColumns << ", levels: " << secant.levels
       << ", coupling_iterations: " << (secant.couplingIterations ? "true" : "false")
-      << ", response_tolerance: " << secant.responseTolerance << "}\n"
+      << ", response_tolerance: " << secant.responseTolerance
+      << ", min_feedback_margin: " << secant.minFeedbackMargin << "}\n"
       << "  convergence: {absolute_tolerance: " << convergence.absoluteTolerance
       << ", relative_tolerance: " << convergence.relativeTolerance << "}\n"
       << "  acceleration:\n    type: " << acceleration.type() << "\n"

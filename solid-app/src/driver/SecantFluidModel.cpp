@@ -232,6 +232,7 @@ SecantFluidModel::predict(const std::vector<int>& columns, const SolidSolve& sol
     { return qr.r.triangularView<Eigen::Upper>().solve(qr.q.transpose() * x); };
     const Eigen::MatrixXd a = Eigen::MatrixXd::Identity(k, k) - pseudoInverse(z);
     const Eigen::FullPivLU<Eigen::MatrixXd> lu(a);
+    p.feedbackMargin = Eigen::JacobiSVD<Eigen::MatrixXd>(a).singularValues().minCoeff();
     if (!lu.isInvertible())
         return std::nullopt;
     const Eigen::VectorXd c = lu.solve(pseudoInverse(response - samples_[b].u));

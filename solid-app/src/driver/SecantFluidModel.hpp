@@ -47,6 +47,11 @@ struct SecantParameters
     // level's tangent, no residual assembly (a solid linear in its loads); 0: a full solid
     // re-solve per column (exact). In [0, 0.1].
     double responseTolerance = 1e-2;
+    // A model whose feedback margin (Prediction::feedbackMargin) is below this amplifies the
+    // frozen-loads step more than 1/margin-fold: not trusted (the predictor falls back to the
+    // linear extrapolation, a coupling iteration to the accelerator's iterate). In [0, 1);
+    // 0 = always trusted.
+    double minFeedbackMargin = 0.0;
 };
 
 class SecantFluidModel
@@ -107,6 +112,9 @@ public:
         int columns = 0;              // secant columns used
         int solidSolves = 0;          // solve() calls
         int responseColumns = 0;      // columns answered by respond() (no solve)
+        // smallest singular value of I - V^+ Z: 1 - the model's feedback gain along its worst
+        // direction (near 0: the model amplifies the frozen-loads step without bound)
+        double feedbackMargin = 1.0;
     };
     // The samples whose differences to the base are usable columns (indices into the stored
     // samples, newest first): nearly parallel ones (less than 5 % new direction) and those whose
