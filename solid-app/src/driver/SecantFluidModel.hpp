@@ -112,8 +112,10 @@ public:
         int columns = 0;              // secant columns used
         int solidSolves = 0;          // solve() calls
         int responseColumns = 0;      // columns answered by respond() (no solve)
-        // smallest singular value of I - V^+ Z: 1 - the model's feedback gain along its worst
-        // direction (near 0: the model amplifies the frozen-loads step without bound)
+        // smallest singular value of I - V^+ Z (in the columns' own scaling): small when the
+        // model's gain nears 1 along some mix of its columns, or when nearly parallel columns
+        // make V^+ large; either way the prediction amplifies the frozen-loads step, and the
+        // samples' noise, up to 1/feedbackMargin-fold
         double feedbackMargin = 1.0;
     };
     // The samples whose differences to the base are usable columns (indices into the stored
