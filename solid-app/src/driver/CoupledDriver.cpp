@@ -198,6 +198,9 @@ struct CoupledDriver::Impl
                                                                  double minColumnRms,
                                                                  SecantCost* cost = nullptr);
     std::optional<LevelAttempt> secantStep(LevelRecord& record, IterationLine& line);
+    // coupling.secant.min_feedback_margin: whether the model's answer may be used, as rank 0
+    // judges it (every rank takes its choice). Collective.
+    bool secantTrusted(const std::optional<SecantFluidModel::Prediction>& answer) const;
     FluidAccuracy accuracyFor(int level, int iteration, double lastResidual,
                               bool interfaceConverged) const;
     FluidResponse solveFluid(const LevelRecord& record, int iteration,
@@ -594,8 +597,7 @@ std::optional<LevelAttempt> CoupledDriver::Impl::predictSecant(LevelRecord& reco
                             std::string("the secant predictor's solid solve failed: ") + e.what(),
                             0};
     }
-    int trusted = prediction && prediction->feedbackMargin >= params.secant.minFeedbackMargin;
-    MPI_Bcast(&trusted, 1, MPI_INT, 0, comm); // every rank takes rank 0's choice
+    const bool trusted = secantTrusted(prediction);
     if (prediction)
     {
         std::ostringstream note;
@@ -620,6 +622,14 @@ std::optional<LevelAttempt> CoupledDriver::Impl::predictSecant(LevelRecord& reco
     return std::nullopt;
 }
 
+bool CoupledDriver::Impl::secantTrusted(
+    const std::optional<SecantFluidModel::Prediction>& answer) const
+{
+    int trusted = answer && answer->feedbackMargin >= params.secant.minFeedbackMargin;
+    MPI_Bcast(&trusted, 1, MPI_INT, 0, comm);
+    return trusted != 0;
+}
+
 // coupling.secant.coupling_iterations: the next iterate is the solid coupled to the secant model
 // expanded about this iteration's fluid solve (collective). Columns closer to the newest solve
 // than the convergence tolerance are noise of the fluid's accuracy and are not used. Without a
@@ -640,9 +650,7 @@ std::optional<LevelAttempt> CoupledDriver::Impl::secantStep(LevelRecord& record,
     }
     if (!step)
         return std::nullopt;
-    int distrusted = step->feedbackMargin < params.secant.minFeedbackMargin;
-    MPI_Bcast(&distrusted, 1, MPI_INT, 0, comm); // every rank takes rank 0's choice
-    if (distrusted)
+    if (!secantTrusted(step))
     {
         std::ostringstream note;
         note << std::setprecision(3) << "secant step not trusted (feedback margin "
