@@ -41,3 +41,27 @@ TEST(Convergence, NeedsOneTolerance)
     p.relativeTolerance = -1.0;
     EXPECT_THROW(p.validate(), std::runtime_error);
 }
+
+// A flow accepted in the mean with relative band b: the tolerances widen to band_factor b
+// (relative) and band_factor b rms(u_hat) (absolute), never below the configured ones; a steady
+// flow (b = 0) and band_factor 0 leave them alone.
+TEST(Convergence, WidensTheTolerancesToAFlowsBand)
+{
+    ConvergenceParameters p;
+    p.absoluteTolerance = 5e-6;
+    p.relativeTolerance = 1e-4;
+    p.bandFactor = 2.0;
+    auto w = p.widenedForBand(1e-3, 9e-3); // band +-0.1 %, rms(u_hat) 9 mm
+    EXPECT_DOUBLE_EQ(w.absoluteTolerance, 1.8e-5);
+    EXPECT_DOUBLE_EQ(w.relativeTolerance, 2e-3);
+    w = p.widenedForBand(1e-3, 1e-3); // 2e-6 m < 5e-6 m: stays
+    EXPECT_DOUBLE_EQ(w.absoluteTolerance, 5e-6);
+    EXPECT_DOUBLE_EQ(p.widenedForBand(0.0, 9e-3).absoluteTolerance, 5e-6);
+    EXPECT_DOUBLE_EQ(p.widenedForBand(0.0, 9e-3).relativeTolerance, 1e-4);
+    p.relativeTolerance = 0.0; // an inactive criterion stays inactive
+    EXPECT_DOUBLE_EQ(p.widenedForBand(1e-3, 9e-3).relativeTolerance, 0.0);
+    p.bandFactor = 0.0;
+    EXPECT_DOUBLE_EQ(p.widenedForBand(1e-3, 9e-3).absoluteTolerance, 5e-6);
+    p.bandFactor = -1.0;
+    EXPECT_THROW(p.validate(), std::runtime_error);
+}

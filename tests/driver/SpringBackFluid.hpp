@@ -74,6 +74,11 @@ public:
         else
             r.iterations = 1;
         lastForces_ = r.faceForces;
+        if (meanBand > 0) // a flow without a steady state, accepted in the mean
+        {
+            r.faceForces *= 1.0 + (solves % 2 ? meanBand : -meanBand);
+            r.band = meanBand;
+        }
         r.converged = true;
         return r;
     }
@@ -84,6 +89,10 @@ public:
     double unstableStep = 0; // > 0: NaN forces when time - last accepted time exceeds it
     std::vector<driver::FluidAccuracy> asked; // the accuracy of every solve
     double inexactness = 0; // > 0: inexact solves, error inexactness x eta |F| at most
+    // > 0: a flow without a steady state: every answer is the exact force times
+    // 1 +- meanBand (the sign alternating from solve to solve: a mean known only to its band),
+    // reported as converged in the mean with band meanBand.
+    double meanBand = 0;
     int solves = 0;
     std::vector<double> accepted;
     bool finished = false;

@@ -128,6 +128,13 @@ TEST(CouplingParameters, BadInputNamesTheKey)
                   .find("coupling.secant.response_tolerance"),
               std::string::npos);
     EXPECT_NEAR(parseText(minimal).secant.responseTolerance, 1e-2, 1e-15); // the default
+    EXPECT_NEAR(parseText(minimal).convergence.bandFactor, 2.0, 1e-15);    // the default
+    const std::string negativeBand =
+        "  convergence: {absolute_tolerance: 1.0e-7, band_factor: -1}\n"
+        "  acceleration: {type: aitken, aitken: {initial_relaxation: 0.5}}\n"
+        "  mapping: {type: nearest-neighbour}\n";
+    EXPECT_NE(errorOf(negativeBand).find("coupling.convergence.band_factor"), std::string::npos)
+        << errorOf(negativeBand);
     EXPECT_EQ(parseText(minimal + "  secant: {response_tolerance: 0}\n").secant.responseTolerance,
               0.0);
     EXPECT_NE(errorOf(minimal + "  secant: {min_feedback_margin: 1}\n")

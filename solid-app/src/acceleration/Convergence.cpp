@@ -3,6 +3,7 @@
 
 #include "config/YamlReader.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -21,6 +22,22 @@ void ConvergenceParameters::validate() const
     if (!(absoluteTolerance > 0.0) && !(relativeTolerance > 0.0))
         throw std::runtime_error("coupling convergence needs absolute_tolerance (|r|/sqrt(n) in m, "
                                  "e.g. 1e-8) or relative_tolerance (e.g. 1e-5) > 0");
+    if (!(bandFactor >= 0.0) || !std::isfinite(bandFactor))
+        throw std::runtime_error("coupling convergence band_factor must be >= 0 (got " +
+                                 config::formatNumber(bandFactor) +
+                                 "; 2 = the band's full width, 0 = off)");
+}
+
+ConvergenceParameters ConvergenceParameters::widenedForBand(double band, double rmsOutput) const
+{
+    ConvergenceParameters widened = *this;
+    if (!(band > 0.0) || !(bandFactor > 0.0))
+        return widened;
+    if (absoluteTolerance > 0.0)
+        widened.absoluteTolerance = std::max(absoluteTolerance, bandFactor * band * rmsOutput);
+    if (relativeTolerance > 0.0)
+        widened.relativeTolerance = std::max(relativeTolerance, bandFactor * band);
+    return widened;
 }
 
 std::string ConvergenceMeasure::toString() const

@@ -128,10 +128,13 @@ CouplingParameters CouplingParameters::parse(const config::Block& b)
     }
 
     auto c = b.block("convergence");
-    c.allowOnly({"absolute_tolerance", "relative_tolerance"});
+    c.allowOnly({"absolute_tolerance", "relative_tolerance", "band_factor"});
     p.convergence.absoluteTolerance = c.number("absolute_tolerance", 0.0);
     p.convergence.relativeTolerance = c.number("relative_tolerance", 0.0);
-    validateIn(p.convergence, c, "absolute_tolerance");
+    p.convergence.bandFactor = c.number("band_factor", p.convergence.bandFactor);
+    const bool bandFactorValid =
+        p.convergence.bandFactor >= 0.0 && std::isfinite(p.convergence.bandFactor);
+    validateIn(p.convergence, c, bandFactorValid ? "absolute_tolerance" : "band_factor");
     p.acceleration = parseAcceleration(b.block("acceleration"));
     p.mapping = parseMapping(b.block("mapping"));
     if (auto t = b.optionalBlock("time"))
@@ -214,7 +217,8 @@ std::string CouplingParameters::echo() const
       << ", response_tolerance: " << secant.responseTolerance
       << ", min_feedback_margin: " << secant.minFeedbackMargin << "}\n"
       << "  convergence: {absolute_tolerance: " << convergence.absoluteTolerance
-      << ", relative_tolerance: " << convergence.relativeTolerance << "}\n"
+      << ", relative_tolerance: " << convergence.relativeTolerance
+      << ", band_factor: " << convergence.bandFactor << "}\n"
       << "  acceleration:\n    type: " << acceleration.type() << "\n"
       << "    " << acceleration.type() << ": " << acceleration.echo() << "\n";
     s << "  mapping:\n    type: " << mapping.type()
