@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""scripts/gci.py against sequences with a known answer."""
+"""scripts/gci.py and scripts/history_gci.py against sequences with a known answer."""
 import math
 import os
 import sys
@@ -37,6 +37,59 @@ class GciTest(unittest.TestCase):
     def test_bad_input(self):
         with self.assertRaises(ValueError):
             gci([1, 2, 4], [1, 2, 3])
+
+
+class HistoryGciTest(unittest.TestCase):
+    """scripts/history_gci.py on three synthetic run folders whose values follow
+    phi = phi_ext + C h^2 with h = cells^(-1/3)."""
+
+    def make_run(self, root, name, cells, extra_times=()):
+        import csv
+        folder = os.path.join(root, name)
+        os.makedirs(os.path.join(folder, "results", "visco"))
+        os.makedirs(os.path.join(folder, "mesh"))
+        with open(os.path.join(folder, "mesh", "mesh-summary.txt"), "w") as f:
+            f.write("hydrofoil meshes: preset=%s\nfluid: cells %d points 1 foil-faces 1\n" % (name, cells))
+        h = cells ** (-1.0 / 3.0)
+        with open(os.path.join(folder, "results", "visco", "history.csv"), "w", newline="") as f:
+            w = csv.writer(f)
+            w.writerow(["level", "time", "Fx", "Fy", "tip_aoa_deg"])
+            for k, t in enumerate(sorted((0, 50, 360, 3600) + tuple(extra_times))):
+                w.writerow([k, t, 0.4 + 50.0 * h * h, -(2.0 - 30.0 * h * h), -3.0 + 400.0 * h * h])
+        return folder
+
+    def test_power_law_and_csv(self):
+        import subprocess
+        import tempfile
+        script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..",
+                              "scripts", "history_gci.py")
+        with tempfile.TemporaryDirectory() as root:
+            runs = [self.make_run(root, "coarse", 67345, (0.5, 2000)),
+                    self.make_run(root, "medium", 141886), self.make_run(root, "fine", 372386)]
+            out = os.path.join(root, "gci.csv")
+            subprocess.run([sys.executable, script, "--out", out] + runs, check=True)
+            import csv
+            rows = {r["quantity"]: r for r in csv.DictReader(open(out))}
+            self.assertEqual(len(rows), 12)  # 3 quantities x 4 times
+            for t in ("0", "50", "360", "3600"):
+                aoa = rows["tip_aoa_deg@t=" + t]
+                self.assertEqual(aoa["convergence"], "monotone")
+                self.assertAlmostEqual(float(aoa["observed_order"]), 2.0, places=4)
+                self.assertAlmostEqual(float(aoa["extrapolated"]), -3.0, places=4)
+                self.assertAlmostEqual(float(rows["lift_N@t=" + t]["extrapolated"]), 2.0, places=4)
+                self.assertAlmostEqual(float(rows["drag_N@t=" + t]["extrapolated"]), 0.4, places=4)
+            # a folder without t = 50 s: one-line error, exit 1
+            bad = os.path.join(root, "bad")
+            os.makedirs(os.path.join(bad, "results", "visco"))
+            os.makedirs(os.path.join(bad, "mesh"))
+            with open(os.path.join(bad, "mesh", "mesh-summary.txt"), "w") as f:
+                f.write("fluid: cells 900000 points 1\n")
+            with open(os.path.join(bad, "results", "visco", "history.csv"), "w") as f:
+                f.write("level,time,Fx,Fy,tip_aoa_deg\n0,0,1,1,1\n")
+            r = subprocess.run([sys.executable, script] + runs[:2] + [bad],
+                               capture_output=True, text=True)
+            self.assertEqual(r.returncode, 1)
+            self.assertIn("t = 50 s", r.stderr)
 
 
 if __name__ == "__main__":
