@@ -5,6 +5,7 @@
 #include "addToRunTimeSelectionTable.H"
 #include "ListListOps.H"
 #include "pointFields.H"
+#include "syncTools.H"
 #include "valuePointPatchFields.H"
 
 namespace Foam
@@ -312,4 +313,48 @@ void Foam::fsiInverseDistanceMotionSolver::solve()
         }
     }
     pointDisplacement_.correctBoundaryConditions();
+    synchroniseSharedPoints();
+}
+
+
+void Foam::fsiInverseDistanceMotionSolver::synchroniseSharedPoints()
+{
+    if (!Pstream::parRun())
+    {
+        return;
+    }
+    // The boundary conditions were applied rank by rank: a slip wall projects with the point
+    // normals of this rank's own faces of the moved geometry, and a point of a moving patch
+    // may lie on that patch on one rank only. So a point on a processor boundary can end up
+    // with two displacements (on the hydrofoil's boundary-layer mesh: the root-wall points next
+    // to the trailing edge, 1e-6 m apart, after the second motion), and the processor faces no
+    // longer match. Every rank takes the same value: a moving patch's value where the point
+    // lies on a moving patch on any rank, else the larger of the ranks' values.
+    const polyMesh& m = mesh();
+    vectorField& d = pointDisplacement_.primitiveFieldRef();
+    labelList onPatch(m.nPoints(), 0);
+    vectorField patchValue(m.nPoints(), vector::uniform(-GREAT));
+    for (const label patchi : patchIDs_)
+    {
+        const labelList& meshPoints = m.boundaryMesh()[patchi].meshPoints();
+        const vectorField values
+        (
+            refCast<const valuePointPatchVectorField>(pointDisplacement_.boundaryField()[patchi])
+        );
+        forAll(meshPoints, i)
+        {
+            onPatch[meshPoints[i]] = 1;
+            patchValue[meshPoints[i]] = values[i];
+        }
+    }
+    syncTools::syncPointList(m, onPatch, maxEqOp<label>(), label(0));
+    syncTools::syncPointList(m, patchValue, maxEqOp<vector>(), vector::uniform(-GREAT));
+    syncTools::syncPointList(m, d, maxMagSqrEqOp<vector>(), vector::zero);
+    forAll(onPatch, pointi)
+    {
+        if (onPatch[pointi])
+        {
+            d[pointi] = patchValue[pointi];
+        }
+    }
 }

@@ -3,7 +3,7 @@
 """Impose a test displacement on the foil patch of a fluid case (ASCII mesh) for mesh-motion checks.
 
     foilMotion.py CASE [--tip-deflection 0.003] [--tip-twist-deg -8] [--time 0]
-                       [--bending beam|shear]
+                       [--bending beam|shear] [--roughness AMP]
 
 Writes CASE/TIME/pointDisplacement with the foil patch as `fixedValue` and a nonuniform value
 list: a bending deflection w(z) = d_y = -tip_deflection (z / span)^2 (towards the suction side,
@@ -13,6 +13,11 @@ does), or, for `shear`, without (d_z = 0: the sections shear, the tip face stays
 check's first version), and a twist about the quarter-chord line (x = 0.3685, y = 0) growing linearly from 0 at the root to
 tip_twist at the tip (negative = nose towards -y... i.e. towards the suction side, lower AOA: the
 paper's tip AOA reaches -8.1 deg). Zero at the clamped root, like the coupled displacement.
+--roughness AMP (m, default 0) adds to every foil point its own offset of up to AMP per
+component (AMP (sin 1.7 i, sin(2.3 i + 1), sin(0.9 i + 2)) for the i-th patch point): a rough
+field, unlike any structural displacement, that moves the root points off the root wall by
+different amounts (the parallel-consistency check of test_cgrid_motion.sh; a few um of it
+inverts the um-thin first cells, so it is no mesh-quality check).
 Values are in the order of the patch's mesh points (points in order of first appearance in the
 patch faces), which is OpenFOAM's PrimitivePatch::meshPoints order. The mesh must be ASCII
 (foamFormatConvert with writeFormat ascii converts a binary one).
@@ -99,6 +104,7 @@ def main(argv):
     p.add_argument("--tip-twist-deg", type=float, default=-8.0)
     p.add_argument("--time", default="0")
     p.add_argument("--bending", default="beam", choices=["beam", "shear"])
+    p.add_argument("--roughness", type=float, default=0.0)
     a = p.parse_args(argv)
     mesh = os.path.join(a.case, "constant", "polyMesh")
     start, count = readPatch(os.path.join(mesh, "boundary"), a.patch)
@@ -106,6 +112,9 @@ def main(argv):
     order = meshPoints(faces)
     pts = readPoints(os.path.join(mesh, "points"))[order]
     d = displacement(pts, a.tip_deflection, a.tip_twist_deg, a.bending)
+    if a.roughness:
+        i = np.arange(len(d), dtype=float)
+        d += a.roughness * np.column_stack([np.sin(1.7 * i), np.sin(2.3 * i + 1), np.sin(0.9 * i + 2)])
     target = os.path.join(a.case, a.time, "pointDisplacement")
     with open(target) as f:
         text = f.read()
