@@ -6,6 +6,9 @@
 #include "pointFields.H"
 #include "valuePointPatchFields.H"
 #include "fixedValuePointPatchFields.H"
+#include "slipPointPatchFields.H"
+#include "points0MotionSolver.H"
+#include "syncTools.H"
 #include "polyMeshTools.H"
 #include "unitConversion.H"
 #include "clockTime.H"
@@ -68,6 +71,7 @@ void Foam::fluidSolidCoupling::moveInterface
           + ppf.type()
         );
     }
+    keepInterfaceOnSlipWalls(*pdPtr);
     refCast<valuePointPatchVectorField>(ppf) == displacement_;
 
     // warmStart flux kept: the flux through each face from U before the motion (below)
@@ -133,6 +137,63 @@ void Foam::fluidSolidCoupling::moveInterface
     // them only while the mesh is flagged moving.
     dropCachedGradients<volVectorField>(mesh_);
     dropCachedGradients<volTensorField>(mesh_);
+}
+
+
+void Foam::fluidSolidCoupling::keepInterfaceOnSlipWalls
+(
+    const pointVectorField& pointDisplacement
+)
+{
+    if (!slipNormalsReady_)
+    {
+        // area vectors of the slip walls' faces at their points, reference geometry, summed
+        // over the ranks that share a point
+        const pointIOField allPoints0(points0MotionSolver::points0IO(mesh_));
+        vectorField area(mesh_.nPoints(), Zero);
+        wordList walls;
+        forAll(pointDisplacement.boundaryField(), patchi)
+        {
+            if
+            (
+                patchi == patchi_
+             || !isA<slipPointPatchVectorField>(pointDisplacement.boundaryField()[patchi])
+            )
+            {
+                continue;
+            }
+            walls.append(mesh_.boundaryMesh()[patchi].name());
+            for (const face& f : mesh_.boundaryMesh()[patchi])
+            {
+                const vector a(f.areaNormal(allPoints0));
+                for (const label pointi : f)
+                {
+                    area[pointi] += a;
+                }
+            }
+        }
+        syncTools::syncPointList(mesh_, area, plusEqOp<vector>(), vector::zero);
+        const labelList& meshPoints = mesh_.boundaryMesh()[patchi_].meshPoints();
+        slipNormals_ = vectorField(meshPoints.size(), Zero);
+        label onWall = 0;
+        forAll(meshPoints, i)
+        {
+            const vector& a = area[meshPoints[i]];
+            if (mag(a) > VSMALL)
+            {
+                slipNormals_[i] = a/mag(a);
+                ++onWall;
+            }
+        }
+        reduce(onWall, sumOp<label>());   // a point shared by ranks counts on each
+        Info<< "fsi: " << onWall << " interface point entries lie on slip walls " << walls
+            << ": they keep to the wall (the displacement along its normal is dropped)" << endl;
+        slipNormalsReady_ = true;
+    }
+    forAll(displacement_, i)
+    {
+        displacement_[i] -= (displacement_[i] & slipNormals_[i])*slipNormals_[i];
+    }
 }
 
 
