@@ -18,6 +18,40 @@ namespace
 const char* const turbulenceFieldNames[] =
     {"k", "omega", "epsilon", "nut", "nuTilda", "ReThetat", "gammaInt"};
 
+// The processor patches' values from f's new internal field; the other boundary conditions keep
+// the last solve's values until the turbulence model's next correct(). A turbulence field's
+// wall function can only be evaluated inside correct() (omegaWallFunction reads the model's
+// production G, which kOmegaSST registers there only: "request for volScalarField::Internal
+// kOmegaSST:G failed" at the coupled run's third solve, the first extrapolated one).
+void evaluateCoupledPatches(Foam::volScalarField& f)
+{
+    using Foam::Pstream;
+    auto& patches = f.boundaryFieldRef();
+    const Pstream::commsTypes comms =
+        Pstream::defaultCommsType == Pstream::commsTypes::scheduled
+      ? Pstream::commsTypes::blocking
+      : Pstream::defaultCommsType;
+    const Foam::label requests = Pstream::nRequests();
+    forAll(patches, patchi)
+    {
+        if (patches[patchi].coupled())
+        {
+            patches[patchi].initEvaluate(comms);
+        }
+    }
+    if (comms == Pstream::commsTypes::nonBlocking && Pstream::parRun())
+    {
+        Pstream::waitRequests(requests);
+    }
+    forAll(patches, patchi)
+    {
+        if (patches[patchi].coupled())
+        {
+            patches[patchi].evaluate(comms);
+        }
+    }
+}
+
 } // namespace
 
 
@@ -491,7 +525,14 @@ Foam::flowWarmStart::Prediction Foam::flowWarmStart::predict(const vectorField& 
             }
         }
         f.primitiveFieldRef() = start;
-        f.correctBoundaryConditions();
+        if (i > 0)
+        {
+            evaluateCoupledPatches(f);
+        }
+        else
+        {
+            f.correctBoundaryConditions();
+        }
     }
     result.applied = true;
     return result;

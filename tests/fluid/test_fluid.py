@@ -322,6 +322,56 @@ def t_warm_start(a):
     check(n_sec <= 0.5 * n_prev, "step 3 SIMPLE iterations: secant %d <= 0.5 x previous %d" % (n_sec, n_prev))
 
 
+def t_warm_start_turbulent(a):
+    """The secant warm start with a turbulence model (k-omega SST with wall functions): from the
+    third solve on the fields are extrapolated, k, omega and nut included, and their wall
+    functions can only be evaluated inside the model's correct() (omegaWallFunction reads the
+    model's production G). Three prescribed rotation steps of 1 deg must each converge, step 3
+    from the extrapolated flow. (Before the fix: "request for volScalarField::Internal
+    kOmegaSST:G ... failed" at step 3, as in the hydrofoil's coupled run on its boundary-layer
+    mesh.)"""
+    motion = "prescribed { type rotation; origin (0.2 0.2 0); axis (0 0 1); angle 3; steps 3; solveFlow true; }"
+    fsi = ("coupled { maxIterations 3000; residualDrop 0; forceTolerance 1e-5; residualRequired false; "
+           "minIterations 5; warmStart { type secant; } }\n" + motion)
+    d = prepare(a, "warm-start-sst", single=True, extra_fsi=fsi)
+    header = "FoamFile { version 2.0; format ascii; class %s; object %s; }\n"
+    open(os.path.join(d, "constant", "turbulenceProperties"), "w").write(
+        header % ("dictionary", "turbulenceProperties")
+        + "simulationType RAS;\nRAS { RASModel kOmegaSST; turbulence on; printCoeffs off; }\n")
+    # inlet: U 0.2 m/s, intensity 1 %, length scale 0.01 m
+    fields = {"k": ("[0 2 -2 0 0 0 0]", "6e-6", "kqRWallFunction"),
+              "omega": ("[0 0 -1 0 0 0 0]", "0.447", "omegaWallFunction"),
+              "nut": ("[0 2 -1 0 0 0 0]", "0", "nutkWallFunction")}
+    for name, (dims, value, wall) in fields.items():
+        inlet = "calculated" if name == "nut" else "fixedValue"
+        outlet = "calculated" if name == "nut" else "zeroGradient"
+        open(os.path.join(d, "0", name), "w").write(
+            header % ("volScalarField", name) + "dimensions %s;\ninternalField uniform %s;\n" % (dims, value)
+            + "boundaryField\n{\n    inlet { type %s; value uniform %s; }\n" % (inlet, value)
+            + "    outlet { type %s; value uniform %s; }\n" % (outlet, value)
+            + "    \"(walls|cylinder|beam|body)\" { type %s; value uniform %s; }\n" % (wall, value)
+            + "    frontAndBack { type empty; }\n}\n")
+    schemes = os.path.join(d, "system", "fvSchemes")
+    txt = open(schemes).read().replace("default         none;",
+                                       "default         none;\n    div(phi,k) bounded Gauss upwind;\n"
+                                       "    div(phi,omega) bounded Gauss upwind;", 1)
+    open(schemes, "w").write(txt)
+    solution = os.path.join(d, "system", "fvSolution")
+    txt = open(solution).read().replace("solvers\n{", "solvers\n{\n    \"(k|omega)\" { solver smoothSolver; "
+                                        "smoother symGaussSeidel; tolerance 1e-12; relTol 0.1; }", 1)
+    txt = txt.replace("U               0.9;", "U               0.9;\n        \"(k|omega)\"     0.7;", 1)
+    open(solution, "w").write(txt)
+    rc, log = run([a.fluid_app, "-prescribed", "-case", d], os.path.join(d, "log.fluid-app"))
+    rows = read_csv(os.path.join(d, "postProcessing", "fsi", "coupling.csv")) if rc == 0 else []
+    check("kOmegaSST" in log, "the turbulence model in use: kOmegaSST")
+    check(rc == 0 and len(rows) == 3 and all(r[3] == 1 for r in rows),
+          "exit %d, 3 SOLVEs, each converged (SIMPLE iterations %s)" % (rc, [int(r[2]) for r in rows]))
+    m = re.search(r"step 3 iteration 1: flow extrapolated from (\d+) earlier interface change", log)
+    check(m is not None and "fields U p k omega nut" in log,
+          "step 3 starts from the flow extrapolated along %s earlier change(s), k, omega and nut with it"
+          % (m.group(1) if m else "no"))
+
+
 def t_band_mean(a):
     """fsiDict coupled.bandTolerance (fluid-app/coupling/steadyConvergence.H): a solve that has
     not converged may stop in the mean at the end of a block. A prescribed 2 deg rotation from
@@ -575,7 +625,7 @@ def t_solid_death(a):
 
 TESTS = {"cfd1-coarse": t_cfd1_coarse, "cfd1-fine": t_cfd1_fine, "force-consistency": t_force_consistency,
          "motion-rotation": t_motion_rotation, "motion-bending": t_motion_bending,
-         "quality-guard": t_quality_guard, "wall-at-rest": t_wall_at_rest, "warm-start": t_warm_start, "band-mean": t_band_mean, "bad-case": t_bad_case, "parallel-equivalence": t_parallel_equivalence,
+         "quality-guard": t_quality_guard, "wall-at-rest": t_wall_at_rest, "warm-start": t_warm_start, "warm-start-turbulent": t_warm_start_turbulent, "band-mean": t_band_mean, "bad-case": t_bad_case, "parallel-equivalence": t_parallel_equivalence,
          "mpmd": t_mpmd, "port": t_port, "peer-abort": t_peer_abort,
          "failed-start": t_failed_start, "solid-death": t_solid_death}
 
