@@ -125,6 +125,7 @@ Foam::fluidSolidCoupling::fluidSolidCoupling
         faceAreas0_[facei] = patch[facei].areaNormal(allPoints0);
     }
     displacement_ = vectorField(meshPoints.size(), Zero);
+    slipNormals_ = slipWallNormals(allPoints0);
 
     Info<< "fsi: interface patch " << patchName_ << ": " << nGlobalPoints_
         << " points, " << nGlobalFaces_ << " faces; rho " << rho_

@@ -7,7 +7,6 @@
 #include "valuePointPatchFields.H"
 #include "fixedValuePointPatchFields.H"
 #include "slipPointPatchFields.H"
-#include "points0MotionSolver.H"
 #include "syncTools.H"
 #include "polyMeshTools.H"
 #include "unitConversion.H"
@@ -71,7 +70,7 @@ void Foam::fluidSolidCoupling::moveInterface
           + ppf.type()
         );
     }
-    keepInterfaceOnSlipWalls(*pdPtr);
+    keepInterfaceOnSlipWalls();
     refCast<valuePointPatchVectorField>(ppf) == displacement_;
 
     // warmStart flux kept: the flux through each face from U before the motion (below)
@@ -140,60 +139,59 @@ void Foam::fluidSolidCoupling::moveInterface
 }
 
 
-void Foam::fluidSolidCoupling::keepInterfaceOnSlipWalls
-(
-    const pointVectorField& pointDisplacement
-)
+void Foam::fluidSolidCoupling::keepInterfaceOnSlipWalls()
 {
-    if (!slipNormalsReady_)
-    {
-        // area vectors of the slip walls' faces at their points, reference geometry, summed
-        // over the ranks that share a point
-        const pointIOField allPoints0(points0MotionSolver::points0IO(mesh_));
-        vectorField area(mesh_.nPoints(), Zero);
-        wordList walls;
-        forAll(pointDisplacement.boundaryField(), patchi)
-        {
-            if
-            (
-                patchi == patchi_
-             || !isA<slipPointPatchVectorField>(pointDisplacement.boundaryField()[patchi])
-            )
-            {
-                continue;
-            }
-            walls.append(mesh_.boundaryMesh()[patchi].name());
-            for (const face& f : mesh_.boundaryMesh()[patchi])
-            {
-                const vector a(f.areaNormal(allPoints0));
-                for (const label pointi : f)
-                {
-                    area[pointi] += a;
-                }
-            }
-        }
-        syncTools::syncPointList(mesh_, area, plusEqOp<vector>(), vector::zero);
-        const labelList& meshPoints = mesh_.boundaryMesh()[patchi_].meshPoints();
-        slipNormals_ = vectorField(meshPoints.size(), Zero);
-        label onWall = 0;
-        forAll(meshPoints, i)
-        {
-            const vector& a = area[meshPoints[i]];
-            if (mag(a) > VSMALL)
-            {
-                slipNormals_[i] = a/mag(a);
-                ++onWall;
-            }
-        }
-        reduce(onWall, sumOp<label>());   // a point shared by ranks counts on each
-        Info<< "fsi: " << onWall << " interface point entries lie on slip walls " << walls
-            << ": they keep to the wall (the displacement along its normal is dropped)" << endl;
-        slipNormalsReady_ = true;
-    }
     forAll(displacement_, i)
     {
         displacement_[i] -= (displacement_[i] & slipNormals_[i])*slipNormals_[i];
     }
+}
+
+
+Foam::vectorField Foam::fluidSolidCoupling::slipWallNormals(const pointField& allPoints0) const
+{
+    const labelList& meshPoints = mesh_.boundaryMesh()[patchi_].meshPoints();
+    vectorField normals(meshPoints.size(), Zero);
+    const pointVectorField* pd = mesh_.findObject<pointVectorField>("pointDisplacement");
+    if (!pd)
+    {
+        return normals;   // no mesh motion (moveInterface says so if it is asked to move)
+    }
+    // area vectors of the slip walls' faces at their points, summed over the ranks that share
+    // a point
+    vectorField area(mesh_.nPoints(), Zero);
+    wordList walls;
+    forAll(pd->boundaryField(), patchi)
+    {
+        if (patchi == patchi_ || !isA<slipPointPatchVectorField>(pd->boundaryField()[patchi]))
+        {
+            continue;
+        }
+        walls.append(mesh_.boundaryMesh()[patchi].name());
+        for (const face& f : mesh_.boundaryMesh()[patchi])
+        {
+            const vector a(f.areaNormal(allPoints0));
+            for (const label pointi : f)
+            {
+                area[pointi] += a;
+            }
+        }
+    }
+    syncTools::syncPointList(mesh_, area, plusEqOp<vector>(), vector::zero);
+    label onWall = 0;
+    forAll(meshPoints, i)
+    {
+        const vector& a = area[meshPoints[i]];
+        if (mag(a) > VSMALL)
+        {
+            normals[i] = a/mag(a);
+            ++onWall;
+        }
+    }
+    reduce(onWall, sumOp<label>());   // a point shared by ranks counts on each
+    Info<< "fsi: " << onWall << " interface point entries lie on slip walls " << walls
+        << ": they keep to the wall (the displacement along its normal is dropped)" << endl;
+    return normals;
 }
 
 

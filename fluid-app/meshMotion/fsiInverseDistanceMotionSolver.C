@@ -172,6 +172,8 @@ void Foam::fsiInverseDistanceMotionSolver::collectSources()
         pts.append(localPoints0);
         areas.append(pointArea);
     }
+    onMovingPatchAnyRank_ = onMovingPatch_;
+    syncTools::syncPointList(mesh(), onMovingPatchAnyRank_, orEqOp<bool>(), false);
     sourcePoints0_ = allGathered(pointField(pts));
     sourceAreas_ = allGathered(scalarField(areas));
     if (sourcePoints0_.empty())
@@ -332,27 +334,20 @@ void Foam::fsiInverseDistanceMotionSolver::synchroniseSharedPoints()
     // lies on a moving patch on any rank, else the larger of the ranks' values.
     const polyMesh& m = mesh();
     vectorField& d = pointDisplacement_.primitiveFieldRef();
-    labelList onPatch(m.nPoints(), 0);
     vectorField patchValue(m.nPoints(), vector::uniform(-GREAT));
     for (const label patchi : patchIDs_)
     {
-        const labelList& meshPoints = m.boundaryMesh()[patchi].meshPoints();
         const vectorField values
         (
             refCast<const valuePointPatchVectorField>(pointDisplacement_.boundaryField()[patchi])
         );
-        forAll(meshPoints, i)
-        {
-            onPatch[meshPoints[i]] = 1;
-            patchValue[meshPoints[i]] = values[i];
-        }
+        UIndirectList<vector>(patchValue, m.boundaryMesh()[patchi].meshPoints()) = values;
     }
-    syncTools::syncPointList(m, onPatch, maxEqOp<label>(), label(0));
     syncTools::syncPointList(m, patchValue, maxEqOp<vector>(), vector::uniform(-GREAT));
     syncTools::syncPointList(m, d, maxMagSqrEqOp<vector>(), vector::zero);
-    forAll(onPatch, pointi)
+    forAll(onMovingPatchAnyRank_, pointi)
     {
-        if (onPatch[pointi])
+        if (onMovingPatchAnyRank_[pointi])
         {
             d[pointi] = patchValue[pointi];
         }

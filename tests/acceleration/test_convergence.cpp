@@ -54,6 +54,8 @@ TEST(Convergence, WidensTheTolerancesToAFlowsBand)
     auto w = p.widenedForBand(1e-3, 9e-3); // band +-0.1 %, rms(u_hat) 9 mm
     EXPECT_DOUBLE_EQ(w.absoluteTolerance, 1.8e-5);
     EXPECT_DOUBLE_EQ(w.relativeTolerance, 2e-3);
+    EXPECT_NE(w.describe().find("|r|/sqrt(n) < "), std::string::npos) << w.describe();
+    EXPECT_NE(w.describe().find(", |r|/|u| < "), std::string::npos) << w.describe();
     w = p.widenedForBand(1e-3, 1e-3); // 2e-6 m < 5e-6 m: stays
     EXPECT_DOUBLE_EQ(w.absoluteTolerance, 5e-6);
     EXPECT_DOUBLE_EQ(p.widenedForBand(0.0, 9e-3).absoluteTolerance, 5e-6);

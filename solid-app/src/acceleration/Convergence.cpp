@@ -40,6 +40,17 @@ ConvergenceParameters ConvergenceParameters::widenedForBand(double band, double 
     return widened;
 }
 
+std::string ConvergenceParameters::describe() const
+{
+    std::string text;
+    if (absoluteTolerance > 0.0)
+        text = "|r|/sqrt(n) < " + config::formatNumber(absoluteTolerance) + " m";
+    if (relativeTolerance > 0.0)
+        text += (text.empty() ? "" : ", ") + std::string("|r|/|u| < ") +
+                config::formatNumber(relativeTolerance);
+    return text;
+}
+
 std::string ConvergenceMeasure::toString() const
 {
     char buffer[160];

@@ -29,6 +29,8 @@ struct ConvergenceParameters
     // The tolerances for an output whose flow was accepted in the mean with relative band
     // `band` (0: a steady flow, returns *this) and rms(u_hat) = rmsOutput [m].
     ConvergenceParameters widenedForBand(double band, double rmsOutput) const;
+    // The active criteria, e.g. "|r|/sqrt(n) < 5e-06 m, |r|/|u| < 0.001"
+    std::string describe() const;
 };
 
 struct ConvergenceMeasure

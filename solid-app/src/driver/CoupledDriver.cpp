@@ -731,19 +731,10 @@ std::optional<LevelAttempt> CoupledDriver::Impl::judge(LevelRecord& record,
     // A flow accepted in the mean answers only to its band: the tolerance follows it.
     const auto tolerances = params.convergence.widenedForBand(response.band, rms(solverOutput));
     line.measure = acceleration::measureConvergence(iterate, solverOutput, tolerances);
-    if (tolerances.absoluteTolerance > params.convergence.absoluteTolerance ||
-        tolerances.relativeTolerance > params.convergence.relativeTolerance)
-    {
-        std::ostringstream note;
-        note << std::setprecision(3) << "tolerance widened to the band: ";
-        if (tolerances.absoluteTolerance > params.convergence.absoluteTolerance)
-            note << "|r|/sqrt(n) < " << tolerances.absoluteTolerance << " m";
-        if (tolerances.relativeTolerance > params.convergence.relativeTolerance)
-            note << (tolerances.absoluteTolerance > params.convergence.absoluteTolerance ? ", "
-                                                                                         : "")
-                 << "|r|/|u| < " << tolerances.relativeTolerance;
-        line.note += (line.note.empty() ? "" : "; ") + note.str();
-    }
+    if (tolerances.absoluteTolerance != params.convergence.absoluteTolerance ||
+        tolerances.relativeTolerance != params.convergence.relativeTolerance)
+        line.note += (line.note.empty() ? "" : "; ") +
+                     ("tolerance widened to the band: " + tolerances.describe());
     const double r = line.measure.rmsResidual;
     record.residual = r;
     if (firstResidual < 0)

@@ -59,29 +59,23 @@ cp -r "$work/fluid/0" "$work/fluid/constant" "$work/fluid/system" "$par/"
   mpirun --oversubscribe -np 2 moveDynamicMesh -parallel > log.moveDynamicMesh 2>&1 ||
       { grep -m2 "FATAL ERROR" -A1 log.moveDynamicMesh; echo "FAIL: parallel motion (log: $par/log.moveDynamicMesh)"; exit 1; }
 )
-/usr/bin/python3 - "$par" <<'EOP'
-import os, re, sys
+/usr/bin/python3 - "$par" "$root/cases/hydrofoil/tools" <<'EOP'
+import os, sys
+sys.path.insert(0, sys.argv[2])
+from foilMotion import _listBody, readPoints   # the case's ASCII OpenFOAM list readers
 case = sys.argv[1]
-def body(path):
-    text = open(path).read()
-    text = text[text.index("}", text.index("FoamFile")) + 1:]
-    m = re.search(r"(\d+)\s*\(", text)
-    return int(m.group(1)), text[m.end():]
-def points(path):
-    n, b = body(path)
-    return [tuple(float(v) for v in s.split()) for s in re.findall(r"\(([^()]*)\)", b)[:n]]
 def labels(path):
-    n, b = body(path)
-    return [int(v) for v in b.split(")")[0].split()[:n]]
+    n, body = _listBody(open(path).read())
+    return [int(v) for v in body.split(")")[0].split()[:n]]
 seen, shared, worst = {}, 0, 0.0
 for proc in ("processor0", "processor1"):
     addr = labels(os.path.join(case, proc, "constant", "polyMesh", "pointProcAddressing"))
-    pts = points(os.path.join(case, proc, "2", "polyMesh", "points"))
+    pts = readPoints(os.path.join(case, proc, "2", "polyMesh", "points"))
     assert len(addr) == len(pts), (proc, len(addr), len(pts))
     for g, p in zip(addr, pts):
         if g in seen:
             shared += 1
-            worst = max(worst, max(abs(a - b) for a, b in zip(seen[g], p)))
+            worst = max(worst, float(abs(seen[g] - p).max()))
         else:
             seen[g] = p
 assert shared > 0, "no point shared by the two ranks"
