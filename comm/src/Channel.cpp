@@ -24,6 +24,8 @@ namespace
 constexpr int kTagHeader = 7101;
 constexpr int kTagPayload = 7102;
 constexpr int kTagIntercomm = 7100;
+constexpr int kTagRowMap = 7103; // distributed side rank -> whole side root, once
+constexpr int kTagRows = 7104;   // interface rows, either way, per Solve / Forces
 
 // Status word of the root's local broadcast.
 enum Status : std::int64_t
@@ -191,6 +193,67 @@ Message receiveRaw(MPI_Comm inter, std::int32_t version, double timeout,
     else
         decodeHeader(words, version); // throws ProtocolError on a version mismatch
     return message;
+}
+
+// A message count for MPI (int); CommError beyond 2^31 - 1 elements.
+int messageCount(std::size_t n, const std::string& what)
+{
+    if (n > static_cast<std::size_t>(INT32_MAX))
+        throw CommError("fsi::comm: " + what + ": more than 2^31 - 1 values in one message");
+    return static_cast<int>(n);
+}
+
+// waitBounded for a transfer with the peer: a timeout blames the peer, on this rank.
+void waitForPeer(MPI_Request& request, double timeout, const std::string& what, int rank,
+                 MPI_Status* status = MPI_STATUS_IGNORE)
+{
+    try
+    {
+        waitBounded(request, timeout, what, status);
+    }
+    catch (const TimeoutError&)
+    {
+        MPI_Cancel(&request);
+        throw TimeoutError("fsi::comm: " + what + ": not complete within " + seconds(timeout) +
+                               "; the peer exited, crashed or hangs",
+                           false, rank);
+    }
+}
+
+// Bounded receive of one message of unknown length (elements of `type`, T-sized) from
+// `source`: probes until it arrives, then receives exactly its size.
+template <class T>
+std::vector<T> receiveSized(MPI_Comm comm, int source, int tag, MPI_Datatype type, double timeout,
+                            const std::string& what, int rank)
+{
+    const auto deadline =
+        Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                           std::chrono::duration<double>(std::min(timeout, kMaxTimeoutSeconds)));
+    MPI_Status status;
+    auto pause = std::chrono::microseconds(20);
+    for (long polls = 0;; ++polls)
+    {
+        int arrived = 0;
+        checkMpi(MPI_Iprobe(source, tag, comm, &arrived, &status), what);
+        if (arrived)
+            break;
+        if (Clock::now() >= deadline)
+            throw TimeoutError("fsi::comm: " + what + ": nothing received within " +
+                                   seconds(timeout) + "; the peer exited, crashed or hangs",
+                               false, rank);
+        if (polls > 200)
+        {
+            std::this_thread::sleep_for(pause);
+            pause = std::min(pause * 2, std::chrono::microseconds(2000));
+        }
+    }
+    int count = 0;
+    checkMpi(MPI_Get_count(&status, type, &count), what);
+    std::vector<T> values(static_cast<std::size_t>(count));
+    MPI_Request request = MPI_REQUEST_NULL;
+    checkMpi(MPI_Irecv(values.data(), count, type, source, tag, comm, &request), what);
+    waitForPeer(request, timeout, what, rank);
+    return values;
 }
 
 void put64(std::vector<char>& out, std::int64_t v)
@@ -769,6 +832,266 @@ void Channel::close()
             checkMpi(MPI_Comm_free(&localComm_), "MPI_Comm_free");
     }
     closed_ = true;
+}
+
+void Channel::requireOpen(const char* operation) const
+{
+    if (closed_ || !healthy_)
+        throw CommError(std::string("fsi::comm: ") + operation + " on a closed or failed channel",
+                        false, localRank_);
+}
+
+void Channel::onRootShared(const std::string& what, const std::function<void()>& work)
+{
+    std::int64_t status = kOk;
+    std::vector<char> bytes;
+    if (isRoot())
+    {
+        try
+        {
+            work();
+        }
+        catch (const std::exception& e)
+        {
+            status = statusOf(e);
+            const std::string text = e.what();
+            bytes.assign(text.begin(), text.end());
+        }
+    }
+    try
+    {
+        shareFromRoot(localComm_, localSize_, status, bytes, nonRootBound(options_.timeoutSeconds),
+                      options_.timeoutSeconds, what);
+    }
+    catch (...)
+    {
+        fail();
+        throw;
+    }
+    if (status != kOk)
+    {
+        if (status != kProtocol) // a timeout or an MPI error leaves requests pending
+            fail();
+        throwStatus(status, std::string(bytes.begin(), bytes.end()), localRank_, peerName());
+    }
+}
+
+void Channel::sendRowMaps(const std::vector<std::vector<std::int64_t>>& rowsOfEachArray)
+{
+    requireOpen("sendRowMaps");
+    std::vector<std::int64_t> words{static_cast<std::int64_t>(rowsOfEachArray.size())};
+    for (const auto& rows : rowsOfEachArray)
+        words.push_back(static_cast<std::int64_t>(rows.size()));
+    for (const auto& rows : rowsOfEachArray)
+        words.insert(words.end(), rows.begin(), rows.end());
+    const std::string what =
+        "sending the interface rows of rank " + std::to_string(localRank_) + " to " + peerName();
+    try
+    {
+        MPI_Request request = MPI_REQUEST_NULL;
+        checkMpi(MPI_Isend(words.data(), messageCount(words.size(), what), MPI_INT64_T, 0,
+                           kTagRowMap, interComm_, &request),
+                 what);
+        waitForPeer(request, options_.timeoutSeconds, what, localRank_);
+    }
+    catch (...)
+    {
+        fail();
+        throw;
+    }
+}
+
+std::vector<RowMap> Channel::receiveRowMaps(const std::vector<RowShape>& shapes)
+{
+    requireOpen("receiveRowMaps");
+    std::vector<RowMap> maps(shapes.size());
+    for (std::size_t a = 0; a < shapes.size(); ++a)
+    {
+        maps[a].rows = shapes[a].rows;
+        maps[a].width = shapes[a].width;
+    }
+    onRootShared(
+        "receiving the interface rows of " + peerName(),
+        [&]
+        {
+            const auto peerRank = [this](int r)
+            { return peerName() + " rank " + std::to_string(r); };
+            for (int r = 0; r < peer_.ranks; ++r)
+            {
+                const std::vector<std::int64_t> words = receiveSized<std::int64_t>(
+                    interComm_, r, kTagRowMap, MPI_INT64_T, options_.timeoutSeconds,
+                    "waiting for the interface rows of " + peerRank(r), 0);
+                const auto arrays = static_cast<std::int64_t>(shapes.size());
+                if (words.empty() || words[0] != arrays ||
+                    static_cast<std::int64_t>(words.size()) < 1 + arrays)
+                    throw ProtocolError("fsi::comm: " + peerRank(r) + " announced " +
+                                        (words.empty()
+                                             ? std::string("nothing")
+                                             : std::to_string(words[0]) + " interface arrays") +
+                                        ", expected " + std::to_string(arrays));
+                std::size_t at = 1 + shapes.size();
+                for (std::size_t a = 0; a < shapes.size(); ++a)
+                {
+                    const auto n = static_cast<std::size_t>(words[1 + a]);
+                    if (n > words.size() - at)
+                        throw ProtocolError("fsi::comm: " + peerRank(r) +
+                                            ": short interface row announcement");
+                    std::vector<std::int64_t> rows(words.begin() + static_cast<std::ptrdiff_t>(at),
+                                                   words.begin() +
+                                                       static_cast<std::ptrdiff_t>(at + n));
+                    at += n;
+                    for (const std::int64_t row : rows)
+                        if (row < 0 || row >= shapes[a].rows)
+                            throw ProtocolError("fsi::comm: " + peerRank(r) + " holds row " +
+                                                std::to_string(row) + " of interface array " +
+                                                std::to_string(a) + ", which has " +
+                                                std::to_string(shapes[a].rows) + " rows");
+                    maps[a].rowsOfPeerRank.push_back(std::move(rows));
+                }
+            }
+            for (std::size_t a = 0; a < shapes.size(); ++a)
+            {
+                if (!shapes[a].partition)
+                    continue;
+                std::vector<int> holders(static_cast<std::size_t>(shapes[a].rows), 0);
+                for (const auto& rows : maps[a].rowsOfPeerRank)
+                    for (const std::int64_t row : rows)
+                        ++holders[static_cast<std::size_t>(row)];
+                const auto bad =
+                    std::find_if(holders.begin(), holders.end(), [](int n) { return n != 1; });
+                if (bad != holders.end())
+                    throw ProtocolError("fsi::comm: interface array " + std::to_string(a) + " of " +
+                                        peerName() + " is not split into disjoint parts: row " +
+                                        std::to_string(bad - holders.begin()) + " is held by " +
+                                        std::to_string(*bad) + " ranks");
+            }
+        });
+    return maps;
+}
+
+void Channel::scatterRows(const RowMap& map, const std::vector<double>& whole)
+{
+    requireOpen("scatterRows");
+    onRootShared(
+        "sending interface rows to " + peerName(),
+        [&]
+        {
+            const auto width = static_cast<std::size_t>(map.width);
+            if (whole.size() != static_cast<std::size_t>(map.rows) * width)
+                throw CommError("fsi::comm: scatterRows: the array has " +
+                                std::to_string(whole.size()) + " values, its map " +
+                                std::to_string(map.rows) + " rows of " + std::to_string(width));
+            const std::size_t ranks = map.rowsOfPeerRank.size();
+            std::vector<std::vector<double>> parts(ranks);
+            std::vector<MPI_Request> requests(ranks, MPI_REQUEST_NULL);
+            const std::string what = "sending interface rows to " + peerName();
+            for (std::size_t r = 0; r < ranks; ++r)
+            {
+                const auto& rows = map.rowsOfPeerRank[r];
+                parts[r].resize(rows.size() * width);
+                for (std::size_t k = 0; k < rows.size(); ++k)
+                    for (std::size_t c = 0; c < width; ++c)
+                        parts[r][k * width + c] =
+                            whole[static_cast<std::size_t>(rows[k]) * width + c];
+                checkMpi(MPI_Isend(parts[r].data(), messageCount(parts[r].size(), what), MPI_DOUBLE,
+                                   static_cast<int>(r), kTagRows, interComm_, &requests[r]),
+                         what);
+            }
+            for (std::size_t r = 0; r < ranks; ++r)
+                waitForPeer(requests[r], options_.timeoutSeconds,
+                            what + " (rank " + std::to_string(r) + ")", 0);
+        });
+}
+
+std::vector<double> Channel::receiveOwnRows(std::int64_t count)
+{
+    requireOpen("receiveOwnRows");
+    const std::string what = "waiting for the interface rows of rank " +
+                             std::to_string(localRank_) + " from " + peerName();
+    std::vector<double> own;
+    try
+    {
+        own = receiveSized<double>(interComm_, 0, kTagRows, MPI_DOUBLE, options_.timeoutSeconds,
+                                   what, localRank_);
+    }
+    catch (...)
+    {
+        fail();
+        throw;
+    }
+    if (static_cast<std::int64_t>(own.size()) != count)
+        throw ProtocolError("fsi::comm: rank " + std::to_string(localRank_) + " received " +
+                                std::to_string(own.size()) + " interface values from " +
+                                peerName() + ", expected " + std::to_string(count),
+                            false, localRank_);
+    return own;
+}
+
+void Channel::sendOwnRows(const std::vector<double>& own)
+{
+    requireOpen("sendOwnRows");
+    const std::string what =
+        "sending the interface rows of rank " + std::to_string(localRank_) + " to " + peerName();
+    try
+    {
+        MPI_Request request = MPI_REQUEST_NULL;
+        checkMpi(MPI_Isend(own.data(), messageCount(own.size(), what), MPI_DOUBLE, 0, kTagRows,
+                           interComm_, &request),
+                 what);
+        waitForPeer(request, options_.timeoutSeconds, what, localRank_);
+    }
+    catch (...)
+    {
+        fail();
+        throw;
+    }
+}
+
+std::vector<double> Channel::gatherRows(const RowMap& map)
+{
+    requireOpen("gatherRows");
+    std::vector<double> whole;
+    onRootShared(
+        "receiving interface rows from " + peerName(),
+        [&]
+        {
+            const auto width = static_cast<std::size_t>(map.width);
+            const std::size_t ranks = map.rowsOfPeerRank.size();
+            std::vector<std::vector<double>> parts(ranks);
+            std::vector<MPI_Request> requests(ranks, MPI_REQUEST_NULL);
+            const std::string what = "waiting for interface rows from " + peerName();
+            for (std::size_t r = 0; r < ranks; ++r)
+            {
+                parts[r].resize(map.rowsOfPeerRank[r].size() * width);
+                checkMpi(MPI_Irecv(parts[r].data(), messageCount(parts[r].size(), what), MPI_DOUBLE,
+                                   static_cast<int>(r), kTagRows, interComm_, &requests[r]),
+                         what);
+            }
+            // every transfer completes before a count is judged: no request is left pending
+            std::vector<int> counts(ranks, 0);
+            for (std::size_t r = 0; r < ranks; ++r)
+            {
+                MPI_Status status;
+                waitForPeer(requests[r], options_.timeoutSeconds,
+                            what + " (rank " + std::to_string(r) + ")", 0, &status);
+                checkMpi(MPI_Get_count(&status, MPI_DOUBLE, &counts[r]), what);
+            }
+            whole.assign(static_cast<std::size_t>(map.rows) * width, 0.0);
+            for (std::size_t r = 0; r < ranks; ++r)
+            {
+                const int count = counts[r];
+                if (static_cast<std::size_t>(count) != parts[r].size())
+                    throw ProtocolError("fsi::comm: " + peerName() + " rank " + std::to_string(r) +
+                                        " sent " + std::to_string(count) + " interface values, " +
+                                        "expected " + std::to_string(parts[r].size()));
+                const auto& rows = map.rowsOfPeerRank[r];
+                for (std::size_t k = 0; k < rows.size(); ++k)
+                    for (std::size_t c = 0; c < width; ++c)
+                        whole[static_cast<std::size_t>(rows[k]) * width + c] =
+                            parts[r][k * width + c];
+            }
+        });
+    return whole;
 }
 
 std::vector<double> Channel::gatherToRoot(const std::vector<double>& local) const

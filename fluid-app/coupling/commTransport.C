@@ -3,7 +3,8 @@
 // OpenFOAM headers). The messages and their payloads are those of
 // fsi/comm/Protocol.hpp (the one description of the wire format, shared with
 // solid-app): Channel::open (Hello: role fluid, program "fluid-app", interface
-// sizes {nPoints, nFaces}) -> InterfaceGeometry; then Solve -> Forces, Accept,
+// sizes {nPoints, nFaces}) -> InterfaceGeometry -> each rank's row maps; then
+// Solve (+ each rank's displacements) -> Forces (+ each rank's forces), Accept,
 // and Finish (close, exit 0) or Abort (exit non-zero with the peer's reason).
 #include "couplingTransport.H"
 
@@ -15,6 +16,7 @@
 #include "fsi/comm/MpmdWorld.hpp"
 #include "fsi/comm/Protocol.hpp"
 
+#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <optional>
@@ -33,7 +35,8 @@ class CommTransport : public CouplingTransport
 public:
     explicit CommTransport(const comm::LaunchOptions& options) : options_(options) {}
 
-    void handshake(const InterfaceGeometry& geometry, long nPoints, long nFaces) override
+    void handshake(const InterfaceGeometry& geometry, long nPoints, long nFaces,
+                   const LocalInterface& local) override
     {
         guard([&] {
             comm::Identity self;
@@ -46,6 +49,12 @@ public:
                 g = {geometry.pointCoordinates, geometry.faceCentres, geometry.faceAreaVectors};
             const comm::Message m = comm::protocol::encode(g);
             channel_->send(m);
+            std::vector<std::vector<std::int64_t>> rows(2);
+            rows[comm::protocol::kPointRows].assign(local.pointRows.begin(),
+                                                    local.pointRows.end());
+            rows[comm::protocol::kFaceRows].assign(local.faceRows.begin(), local.faceRows.end());
+            channel_->sendRowMaps(rows);
+            localPoints_ = static_cast<std::int64_t>(local.pointRows.size());
         });
     }
 
@@ -60,10 +69,15 @@ public:
             {
             case comm::MessageKind::Solve:
             {
-                comm::protocol::Solve solve = comm::protocol::decodeSolve(std::move(m));
+                const comm::protocol::Solve solve = comm::protocol::decodeSolve(m);
                 c.kind = CommandKind::solve;
                 c.time = solve.time;
-                c.displacements = std::move(solve.displacements); // master only
+                const auto start = std::chrono::steady_clock::now();
+                c.displacements =
+                    channel_->receiveOwnRows(comm::protocol::kRowWidth * localPoints_);
+                c.exchangeSeconds = std::chrono::duration<double>(
+                                        std::chrono::steady_clock::now() - start)
+                                        .count();
                 c.accuracyGiven = solve.accuracyGiven;
                 c.forceTolerance = solve.forceTolerance;
                 c.residualDrop = solve.residualDrop;
@@ -94,12 +108,12 @@ public:
             comm::protocol::Forces f;
             f.level = solve.step;
             f.iteration = solve.iteration;
-            f.faceForces = report.faceForces;
             f.iterations = report.simpleIterations;
             f.converged = report.converged;
             f.residuals = report.residuals;
             f.band = report.band;
             channel_->send(comm::protocol::encode(f));
+            channel_->sendOwnRows(report.faceForces);
         });
     }
 
@@ -138,6 +152,7 @@ private:
 
     comm::LaunchOptions options_;
     std::optional<comm::Channel> channel_;
+    std::int64_t localPoints_ = 0; // this rank's interface points
 };
 
 bool hasFlag(int argc, char** argv, const char* flag)

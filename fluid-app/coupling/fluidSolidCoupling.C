@@ -144,53 +144,19 @@ Foam::fluidSolidCoupling::~fluidSolidCoupling() = default;
 
 // * * * * * * * * * * * * * * Private Member Functions  * * * * * * * * * * //
 
-fsi::fluid::Command Foam::fluidSolidCoupling::broadcastCommand
-(
-    const fsi::fluid::Command& masterCommand
-)
+void Foam::fluidSolidCoupling::checkSolve(const fsi::fluid::Command& c)
 {
-    fsi::fluid::Command c = masterCommand;
-    label nValues = label(c.displacements.size());
-    if (Pstream::parRun())
+    const label expected = 3*pointToGlobal_.size();
+    const bool sizeOk = returnReduce(label(c.displacements.size()) == expected, andOp<bool>());
+    if (!sizeOk)
     {
-        label kind = label(c.kind), step = c.step, iteration = c.iteration;
-        label accuracyGiven = c.accuracyGiven, minIterations = c.minIterations;
-        scalar time = c.time, forceTolerance = c.forceTolerance, residualDrop = c.residualDrop;
-        string reason(c.reason);
-        Pstream::scatter(kind);
-        Pstream::scatter(step);
-        Pstream::scatter(iteration);
-        Pstream::scatter(time);
-        Pstream::scatter(nValues);
-        Pstream::scatter(reason);
-        Pstream::scatter(accuracyGiven);
-        Pstream::scatter(minIterations);
-        Pstream::scatter(forceTolerance);
-        Pstream::scatter(residualDrop);
-        c.accuracyGiven = accuracyGiven;
-        c.minIterations = minIterations;
-        c.forceTolerance = forceTolerance;
-        c.residualDrop = residualDrop;
-        c.kind = fsi::fluid::CommandKind(kind);
-        c.step = step;
-        c.iteration = iteration;
-        c.time = time;
-        c.reason = reason;
+        failWith
+        (
+            "SOLVE step " + Foam::name(c.step) + " iteration " + Foam::name(c.iteration)
+          + ": a rank received a number of interface displacements different from its "
+          + "points (" + Foam::name(nGlobalPoints_) + " interface points in all)"
+        );
     }
-    if (c.kind == fsi::fluid::CommandKind::solve)
-    {
-        if (nValues != 3*nGlobalPoints_)
-        {
-            failWith
-            (
-                "SOLVE carried " + Foam::name(nValues/3)
-              + " interface displacements, the fluid interface has "
-              + Foam::name(nGlobalPoints_) + " points"
-            );
-        }
-        c.displacements = distributeDisplacements(c.displacements);
-    }
-    return c;
 }
 
 
@@ -223,8 +189,7 @@ void Foam::fluidSolidCoupling::answerSolve
     const SteadySolver& solve,
     const SolveControls& own,
     const fsi::fluid::Command& c,
-    const scalar wallSeconds,
-    const scalar scatterSeconds
+    const scalar wallSeconds
 )
 {
     Info<< "fsi: SOLVE step " << c.step << " iteration " << c.iteration << endl;
@@ -256,9 +221,14 @@ void Foam::fluidSolidCoupling::answerSolve
     fsi::fluid::ForceReport report;
     // A flow without a steady state that met the band rule answers with its mean.
     const vectorField f(r.inTheMean ? meanBlockForces() : faceForces(patchi_));
-    const clockTime gather;
-    report.faceForces = gatherFaceForces(f);
-    const scalar exchangeSeconds = scatterSeconds + gather.elapsedTime();
+    report.faceForces.assign(3*f.size(), 0.0);
+    forAll(f, facei)
+    {
+        for (direction c = 0; c < 3; ++c)
+        {
+            report.faceForces[3*facei + c] = f[facei][c];
+        }
+    }
     report.simpleIterations = r.iterations;
     report.residuals = {r.residualU, r.residualP};
     report.converged = r.converged;
@@ -270,13 +240,19 @@ void Foam::fluidSolidCoupling::answerSolve
         << (r.inTheMean ? " (converged in the mean; the mean force is sent)" : "")
         << ", residuals U " << r.residualU << " p " << r.residualP
         << ", interface force " << total << " N" << endl;
-    writeInterfaceCsv
-    (
-        "interfaceForces_" + Foam::name(c.step) + "_" + Foam::name(c.iteration) + ".csv",
-        report.faceForces, nGlobalFaces_, "i,fx,fy,fz"
-    );
-    logSolve(c, r, total, gMax(mag(displacement_)()), wallSeconds, exchangeSeconds);
+    if (writeInterfaceData_)
+    {
+        writeInterfaceCsv
+        (
+            "interfaceForces_" + Foam::name(c.step) + "_" + Foam::name(c.iteration) + ".csv",
+            gatherFaceForces(f), nGlobalFaces_, "i,fx,fy,fz"
+        );
+    }
+    // every rank sends its own faces' forces to the solid (no gather here)
+    const clockTime send;
     transport_->sendForces(c, report);
+    const scalar exchangeSeconds = returnReduce(c.exchangeSeconds + send.elapsedTime(), maxOp<scalar>());
+    logSolve(c, r, total, gMax(mag(displacement_)()), wallSeconds, exchangeSeconds);
 }
 
 
@@ -475,7 +451,15 @@ int Foam::fluidSolidCoupling::runCoupled
     using namespace fsi::fluid;
     transport_ = std::move(transport);
     const InterfaceGeometry geometry = gatherGeometry();
-    transport_->handshake(geometry, nGlobalPoints_, nGlobalFaces_);
+    LocalInterface local;
+    local.pointRows.assign(pointToGlobal_.begin(), pointToGlobal_.end());
+    local.faceRows.assign(faceToGlobal_.begin(), faceToGlobal_.end());
+    local.pointCoordinates.reserve(3*points0_.size());
+    for (const point& p : points0_)
+    {
+        local.pointCoordinates.insert(local.pointCoordinates.end(), {p.x(), p.y(), p.z()});
+    }
+    transport_->handshake(geometry, nGlobalPoints_, nGlobalFaces_, local);
 
     // The logs only once the solid is connected: a start that fails (no peer, wrong port file,
     // handshake mismatch) must not truncate accepted.csv, the restart point of an earlier run.
@@ -507,14 +491,12 @@ int Foam::fluidSolidCoupling::runCoupled
     const clockTime wall;
     while (true)
     {
-        const Command received = transport_->receive();
-        const clockTime scatter;
-        const Command c = broadcastCommand(received);
-        const scalar scatterSeconds = scatter.elapsedTime();
+        const Command c = transport_->receive();
         switch (c.kind)
         {
             case CommandKind::solve:
-                answerSolve(solve, own, c, wall.elapsedTime(), scatterSeconds);
+                checkSolve(c);
+                answerSolve(solve, own, c, wall.elapsedTime());
                 break;
             case CommandKind::accept:
                 acceptLevel(c);

@@ -1,11 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // fluid-app: the interface addressing (see fluidSolidCoupling.H): a global order of the
-// interface points and faces, the gathers to the master and the per-rank displacements.
+// interface points and faces, and the gathers to the master (geometry; the interface CSVs).
 #include "fluidSolidCoupling.H"
 
 #include "labelIOList.H"
 #include "ListOps.H"
-#include "PstreamBuffers.H"
 
 #include <algorithm>
 
@@ -88,61 +87,11 @@ void Foam::fluidSolidCoupling::buildGlobalOrdering()
             << exit(FatalError);
     }
 
-    // Every rank's lists on the master, once: it sends each rank its own displacements and
-    // places the gathered forces (the lists never change during a run).
-    procPointToGlobal_.setSize(Pstream::nProcs());
+    // Every rank's faces on the master, once: it places the gathered forces of the interface
+    // CSVs (the lists never change during a run).
     procFaceToGlobal_.setSize(Pstream::nProcs());
-    procPointToGlobal_[Pstream::myProcNo()] = pointToGlobal_;
     procFaceToGlobal_[Pstream::myProcNo()] = faceToGlobal_;
-    Pstream::gatherList(procPointToGlobal_);
     Pstream::gatherList(procFaceToGlobal_);
-}
-
-
-std::vector<double> Foam::fluidSolidCoupling::distributeDisplacements
-(
-    const std::vector<double>& globalDisplacement
-) const
-{
-    // The displacements of `ids` (global point numbers) out of the global array, flat xyz.
-    const auto pick = [&globalDisplacement](const labelList& ids)
-    {
-        scalarList part(3*ids.size());
-        forAll(ids, i)
-        {
-            for (direction c = 0; c < 3; ++c)
-            {
-                part[3*i + c] = globalDisplacement[3*ids[i] + c];
-            }
-        }
-        return part;
-    };
-
-    scalarList local;
-    if (!Pstream::parRun())
-    {
-        local = pick(pointToGlobal_);
-    }
-    else
-    {
-        PstreamBuffers buffers(Pstream::commsTypes::nonBlocking);
-        if (Pstream::master())
-        {
-            for (label proci = 1; proci < Pstream::nProcs(); ++proci)
-            {
-                UOPstream toProc(proci, buffers);
-                toProc << pick(procPointToGlobal_[proci]);
-            }
-            local = pick(pointToGlobal_);
-        }
-        buffers.finishedSends();
-        if (!Pstream::master())
-        {
-            UIPstream fromMaster(Pstream::masterNo(), buffers);
-            fromMaster >> local;
-        }
-    }
-    return std::vector<double>(local.begin(), local.end());
 }
 
 

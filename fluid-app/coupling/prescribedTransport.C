@@ -77,9 +77,9 @@ class PrescribedTransport : public CouplingTransport
 public:
     explicit PrescribedTransport(const PrescribedMotion& motion) : motion_(motion) {}
 
-    void handshake(const InterfaceGeometry& geometry, long, long) override
+    void handshake(const InterfaceGeometry&, long, long, const LocalInterface& local) override
     {
-        points_ = geometry.pointCoordinates;
+        points_ = local.pointCoordinates; // every rank moves its own points
     }
 
     Command receive() override

@@ -46,6 +46,46 @@ inline std::int64_t blockStart(std::int64_t n, int size, int rank)
     return rank * (n / size) + std::min<std::int64_t>(rank, n % size);
 }
 
+// The distributed interface arrays of the exchange (Channel row maps), two per size n of kSizes
+// (array 2k: "points", 2k + 1: "faces"; n rows of 3 values each). Rank r of S holds the rows
+// i = r (mod S): faces in descending order (a partition), points ascending plus every 7th row of
+// the previous rank (shared rows, like points on processor boundaries; on one rank: held twice).
+inline std::vector<std::int64_t> pointRowsOf(std::int64_t n, int size, int rank)
+{
+    std::vector<std::int64_t> rows;
+    for (std::int64_t i = 0; i < n; ++i)
+        if (i % size == rank || ((i + 1) % size == rank && i % 7 == 0))
+            rows.push_back(i);
+    return rows;
+}
+inline std::vector<std::int64_t> faceRowsOf(std::int64_t n, int size, int rank)
+{
+    std::vector<std::int64_t> rows;
+    for (std::int64_t i = n - 1; i >= 0; --i)
+        if (i % size == rank)
+            rows.push_back(i);
+    return rows;
+}
+inline std::vector<std::vector<std::int64_t>> rowMapsOf(int size, int rank)
+{
+    std::vector<std::vector<std::int64_t>> maps;
+    for (const std::int64_t n : kSizes)
+    {
+        maps.push_back(pointRowsOf(n, size, rank));
+        maps.push_back(faceRowsOf(n, size, rank));
+    }
+    return maps;
+}
+// Value c of row `row` of a distributed array.
+inline double rowDisplacement(std::int64_t row, int c, std::int64_t step, std::int64_t iteration)
+{
+    return displacementValue(3 * row + c, step, iteration);
+}
+inline double rowForce(std::int64_t row, int c, std::int64_t step, std::int64_t iteration)
+{
+    return forceValue(rowDisplacement(row, c, step, iteration), 3 * row + c);
+}
+
 struct DriverFlags
 {
     std::int64_t geometrySize = 12;            // InterfaceGeometry values sent by the fluid
@@ -63,6 +103,8 @@ struct DriverFlags
     int checkWorldSize = 0; // --check-world-size N (fluid with redirect): MPI_COMM_WORLD size
     int pauseBefore = -1;   // --pause-before N S: sleep S seconds before the N-th operation
     double pauseSeconds = 0.0;
+    bool overlapFaceRows = false; // --overlap-face-rows (fluid): the last rank also holds face
+                                  // row 0 of array 5 (a map that is not a partition)
 };
 
 inline std::vector<std::int64_t> parseList(const std::string& text)
@@ -116,6 +158,8 @@ inline DriverFlags parseDriverFlags(int argc, char** argv)
             f.expectPeerProgram = next();
         else if (a == "--check-world-size")
             f.checkWorldSize = std::stoi(next());
+        else if (a == "--overlap-face-rows")
+            f.overlapFaceRows = true;
         else if (a == "--pause-before")
         {
             f.pauseBefore = std::stoi(next());

@@ -57,11 +57,18 @@ void run(const LaunchOptions& launch, const DriverFlags& flags, std::optional<Ch
     geometry.values = channel.gatherToRoot(local);
     inject.before("send InterfaceGeometry");
     channel.send(geometry);
+    std::vector<std::vector<std::int64_t>> rowMaps = rowMapsOf(size, rank);
+    if (flags.overlapFaceRows && rank == size - 1)
+        rowMaps[5].push_back(0);
+    channel.sendRowMaps(rowMaps);
 
     std::int64_t step = 0;
     int rounds = 0;
-    for (const std::int64_t n : kSizes)
+    for (std::size_t round = 0; round < kSizes.size(); ++round)
     {
+        const std::int64_t n = kSizes[round];
+        const std::vector<std::int64_t>& pointRows = rowMaps[2 * round];
+        const std::vector<std::int64_t>& faceRows = rowMaps[2 * round + 1];
         ++step;
         for (std::int64_t iteration = 1; iteration <= 2; ++iteration)
         {
@@ -80,6 +87,20 @@ void run(const LaunchOptions& launch, const DriverFlags& flags, std::optional<Ch
                         "displacement " + std::to_string(i) + " of level " + std::to_string(step));
                 forces[k] = forceValue(mine[k], i);
             }
+            // this rank's rows straight from the solid's root
+            const std::vector<double> own =
+                channel.receiveOwnRows(3 * static_cast<std::int64_t>(pointRows.size()));
+            for (std::size_t j = 0; j < pointRows.size(); ++j)
+                for (int c = 0; c < 3; ++c)
+                    require(own[3 * j + static_cast<std::size_t>(c)] ==
+                                rowDisplacement(pointRows[j], c, step, iteration),
+                            "displacement row " + std::to_string(pointRows[j]) + " of level " +
+                                std::to_string(step));
+            std::vector<double> ownForces(3 * faceRows.size());
+            for (std::size_t j = 0; j < faceRows.size(); ++j)
+                for (int c = 0; c < 3; ++c)
+                    ownForces[3 * j + static_cast<std::size_t>(c)] =
+                        rowForce(faceRows[j], c, step, iteration);
             Message reply;
             reply.kind = MessageKind::Forces;
             reply.timeStep = step;
@@ -90,6 +111,7 @@ void run(const LaunchOptions& launch, const DriverFlags& flags, std::optional<Ch
                              2.5e-7 * static_cast<double>(step)};
             inject.before("send Forces");
             channel.send(reply);
+            channel.sendOwnRows(ownForces);
             ++rounds;
         }
         inject.before("receive Accept");

@@ -41,11 +41,19 @@ void run(const LaunchOptions& launch, const DriverFlags& flags, std::optional<Ch
     for (std::size_t i = 0; i < geometry.values.size(); ++i)
         require(geometry.values[i] == geometryValue(static_cast<std::int64_t>(i)),
                 "geometry value " + std::to_string(i));
+    std::vector<RowShape> shapes;
+    for (const std::int64_t n : kSizes)
+    {
+        shapes.push_back({n, 3, false}); // points: shared rows allowed
+        shapes.push_back({n, 3, true});  // faces: a partition
+    }
+    const std::vector<RowMap> rowMaps = channel.receiveRowMaps(shapes);
 
     std::int64_t step = 0;
     int rounds = 0;
-    for (const std::int64_t n : kSizes)
+    for (std::size_t round = 0; round < kSizes.size(); ++round)
     {
+        const std::int64_t n = kSizes[round];
         ++step;
         for (std::int64_t iteration = 1; iteration <= 2; ++iteration)
         {
@@ -60,6 +68,15 @@ void run(const LaunchOptions& launch, const DriverFlags& flags, std::optional<Ch
             const bool wrongKind = inject.before("send Solve");
             channel.send(wrongKind ? MessageKind::Accept : MessageKind::Solve, step, iteration,
                          std::move(displacement));
+            if (!wrongKind)
+            {
+                std::vector<double> rows;
+                if (rank == 0)
+                    for (std::int64_t i = 0; i < n; ++i)
+                        for (int c = 0; c < 3; ++c)
+                            rows.push_back(rowDisplacement(i, c, step, iteration));
+                channel.scatterRows(rowMaps[2 * round], rows);
+            }
             inject.before("receive Forces");
             Message forces = channel.receive(MessageKind::Forces);
             require(forces.timeStep == step && forces.iteration == iteration &&
@@ -76,6 +93,18 @@ void run(const LaunchOptions& launch, const DriverFlags& flags, std::optional<Ch
                 require(forces.values[static_cast<std::size_t>(i)] ==
                             forceValue(displacementValue(i, step, iteration), i),
                         "force " + std::to_string(i) + " of level " + std::to_string(step));
+            // every fluid rank's own rows, placed by the map
+            const std::vector<double> faces = channel.gatherRows(rowMaps[2 * round + 1]);
+            if (rank == 0)
+            {
+                require(static_cast<std::int64_t>(faces.size()) == 3 * n, "gathered rows size");
+                for (std::int64_t i = 0; i < n; ++i)
+                    for (int c = 0; c < 3; ++c)
+                        require(faces[static_cast<std::size_t>(3 * i + c)] ==
+                                    rowForce(i, c, step, iteration),
+                                "force row " + std::to_string(i) + " of level " +
+                                    std::to_string(step));
+            }
             ++rounds;
         }
         inject.before("send Accept");

@@ -109,6 +109,8 @@ int main(int argc, char** argv)
         const protocol::InterfaceGeometry geometry = protocol::decodeGeometry(
             channel->receive(MessageKind::InterfaceGeometry), nPoints, nFaces);
         const bool root = channel->isRoot();
+        const std::vector<RowMap> rows = channel->receiveRowMaps(
+            {{nPoints, protocol::kRowWidth, false}, {nFaces, protocol::kRowWidth, true}});
 
         std::ofstream csv;
         if (root && !flags.out.empty())
@@ -146,8 +148,8 @@ int main(int argc, char** argv)
                 solve.level = s;
                 solve.iteration = k;
                 solve.time = 10.0 * s;
-                solve.displacements = std::move(d);
                 channel->send(protocol::encode(solve));
+                channel->scatterRows(rows[protocol::kPointRows], d);
                 if (s == flags.dieAtStep)
                 {
                     std::printf("fake-solid: test: raising signal %d after Solve of step %d\n",
@@ -156,14 +158,16 @@ int main(int argc, char** argv)
                     std::raise(flags.dieSignal);
                 }
                 const protocol::Forces f =
-                    protocol::decodeForces(channel->receive(MessageKind::Forces), s, k, nFaces);
+                    protocol::decodeForces(channel->receive(MessageKind::Forces), s, k);
+                const std::vector<double> faceForces =
+                    channel->gatherRows(rows[protocol::kFaceRows]);
                 require(f.residuals.size() == 2, "Forces residuals {U, p}");
                 if (root)
                 {
                     double F[3] = {0, 0, 0};
                     for (std::int64_t i = 0; i < nFaces; ++i)
                         for (int c = 0; c < 3; ++c)
-                            F[c] += f.faceForces[3 * i + c];
+                            F[c] += faceForces[3 * i + c];
                     std::printf("fake-solid: step %d iteration %d: fluid iterations %lld, "
                                 "residuals %.3e %.3e, force (%.10g %.10g %.10g) N\n",
                                 s, k, static_cast<long long>(f.iterations), f.residuals[0],

@@ -34,6 +34,13 @@ CommFluidPeer::CommFluidPeer(comm::Channel& channel) : channel_(channel)
         interface_.faceCentres = rows<mapping::PointCloud>(geometry.faceCentres);
         interface_.faceAreas = rows<mapping::PointCloud>(geometry.faceAreas);
     }
+    using namespace comm::protocol;
+    std::vector<comm::RowShape> shapes(2);
+    shapes[kPointRows] = {sizes[0], kRowWidth, false};
+    shapes[kFaceRows] = {sizes[1], kRowWidth, true};
+    auto maps = channel_.receiveRowMaps(shapes);
+    pointRows_ = std::move(maps[kPointRows]);
+    faceRows_ = std::move(maps[kFaceRows]);
 }
 
 FluidResponse CommFluidPeer::solve(int level, int iteration, double time,
@@ -48,19 +55,21 @@ FluidResponse CommFluidPeer::solve(int level, int iteration, double time,
     command.forceTolerance = accuracy.forceTolerance;
     command.residualDrop = accuracy.residualDrop;
     command.minIterations = accuracy.minIterations;
+    std::vector<double> displacements;
     if (channel_.isRoot())
     {
-        command.displacements.resize(3 * pointDisplacement.rows());
+        displacements.resize(3 * static_cast<std::size_t>(pointDisplacement.rows()));
         Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(
-            command.displacements.data(), pointDisplacement.rows(), 3) = pointDisplacement;
+            displacements.data(), pointDisplacement.rows(), 3) = pointDisplacement;
     }
     channel_.send(comm::protocol::encode(command));
+    channel_.scatterRows(pointRows_, displacements);
     const auto answer =
-        comm::protocol::decodeForces(channel_.receive(comm::MessageKind::Forces), level, iteration,
-                                     channel_.peer().interfaceSizes[1]);
+        comm::protocol::decodeForces(channel_.receive(comm::MessageKind::Forces), level, iteration);
+    const std::vector<double> faceForces = channel_.gatherRows(faceRows_);
     FluidResponse r;
     if (channel_.isRoot())
-        r.faceForces = rows<mapping::Values>(answer.faceForces);
+        r.faceForces = rows<mapping::Values>(faceForces);
     r.iterations = static_cast<int>(answer.iterations);
     r.converged = answer.converged;
     r.band = answer.band;

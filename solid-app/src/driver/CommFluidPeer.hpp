@@ -3,7 +3,8 @@
 // The fluid peer over fsi::comm: the solid side of the coupling protocol spoken by fluid-app.
 // The messages and their payloads are laid out in one place, fsi/comm/Protocol.hpp (shared with
 // fluid-app); this class converts the wire's n x 3 row-major arrays to the driver's n x 3
-// matrices (same layout) at the boundary.
+// matrices (same layout) at the boundary. Displacements and forces are distributed rows: each
+// fluid rank exchanges its own points and faces with rank 0 here (no gather on the fluid side).
 #pragma once
 
 #include "driver/FluidPeer.hpp"
@@ -15,7 +16,8 @@ namespace fsi::driver
 class CommFluidPeer : public FluidPeer
 {
 public:
-    // Receives the fluid's interface geometry (collective over the solid's ranks). The channel
+    // Receives the fluid's interface geometry and its ranks' row maps (collective over the
+    // solid's ranks). The channel
     // is not owned and must outlive the peer. Throws std::runtime_error for an inconsistent
     // geometry message.
     explicit CommFluidPeer(comm::Channel& channel);
@@ -31,6 +33,10 @@ public:
 private:
     comm::Channel& channel_;
     FluidInterface interface_;
+    // which global points / faces each fluid rank holds: displacements go to, and forces come
+    // from, every fluid rank directly (Protocol.hpp; filled on rank 0)
+    comm::RowMap pointRows_;
+    comm::RowMap faceRows_;
     bool finished_ = false;
 };
 

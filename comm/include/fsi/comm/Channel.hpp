@@ -16,6 +16,7 @@
 #include <mpi.h>
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,26 @@ namespace fsi
 {
 namespace comm
 {
+
+// One interface array (rows x width values, row-major) held in parts by the ranks of the
+// distributed side (the fluid: each rank its own patch points or faces) and whole by the peer's
+// root (the solid's driver): which global rows each peer rank holds, in the order its values
+// travel. A row may be held by several ranks (points on processor boundaries) unless the map
+// is a partition (faces).
+struct RowMap
+{
+    std::int64_t rows = 0;                                 // rows of the whole array
+    int width = 3;                                         // values per row
+    std::vector<std::vector<std::int64_t>> rowsOfPeerRank; // whole side's root only
+};
+
+// What the whole side requires of one array's map (receiveRowMaps checks it).
+struct RowShape
+{
+    std::int64_t rows = 0;
+    int width = 3;
+    bool partition = false; // every row held by exactly one peer rank (needed by gatherRows)
+};
 
 // Solid = driver and port-mode server; Fluid = port-mode client.
 enum class Role : std::int32_t
@@ -114,6 +135,34 @@ public:
     // "solid-app (solid, 2 ranks)" or the role before the handshake.
     std::string peerName() const;
 
+    // ---- Distributed interface arrays (DESIGN.md section 4) -------------------------------
+    // Each rank of the distributed side (the fluid) exchanges its own rows directly with the
+    // peer's root over the intercommunicator: no gather or scatter through the distributed
+    // side's root. Every call is made by ALL ranks of this program; bounded by the timeout like
+    // send/receive. On the whole side the root does the transfer and the outcome is shared, so
+    // the same exception is thrown on every rank; on the distributed side a rank's failure is
+    // its own (TimeoutError, ProtocolError or CommError with everyRank() false).
+    //
+    // Distributed side, once after open(): this rank's global rows of each array, in the
+    // order its values will travel.
+    void sendRowMaps(const std::vector<std::vector<std::int64_t>>& rowsOfEachArray);
+    // Whole side, once after open(): every peer rank's rows of each array, checked against
+    // shapes (one per array: rows in range, a partition where asked; else ProtocolError naming
+    // the array index and the peer rank). The maps' rowsOfPeerRank are filled on the root.
+    std::vector<RowMap> receiveRowMaps(const std::vector<RowShape>& shapes);
+    // Whole side: each peer rank receives its rows of the root's `whole` (map.rows x
+    // map.width values; CommError otherwise).
+    void scatterRows(const RowMap& map, const std::vector<double>& whole);
+    // Distributed side: this rank's rows sent by scatterRows; `count` values expected
+    // (ProtocolError when the peer sent a different number).
+    std::vector<double> receiveOwnRows(std::int64_t count);
+    // Distributed side: this rank's rows (its map's rows x width values) to the peer's root.
+    void sendOwnRows(const std::vector<double>& own);
+    // Whole side: the whole array on the root (rows x width; {} elsewhere), every row from the
+    // peer rank that holds it; ProtocolError when a rank sent a different number of values.
+    // map must be a partition.
+    std::vector<double> gatherRows(const RowMap& map);
+
     // Bounded helpers on localComm() (see Collectives.hpp).
     std::vector<double> gatherToRoot(const std::vector<double>& local) const;
     std::vector<double> scatterFromRoot(const std::vector<double>& rootValues,
@@ -131,6 +180,10 @@ private:
     void handshake(const PeerExpectation& expectation);
     Message receiveOnRoot(MessageKind expected, bool anyKind, double seconds);
     void fail(); // marks the channel unusable
+    // Runs work on the root; the outcome (ok or the error's kind and text) reaches every local
+    // rank, which then all return or all throw. Bounded.
+    void onRootShared(const std::string& what, const std::function<void()>& work);
+    void requireOpen(const char* operation) const;
 
     LaunchOptions options_;
     Identity self_;

@@ -13,7 +13,8 @@ namespace comm
 {
 
 // Bumped whenever the header layout or the meaning of a kind's payload changes.
-constexpr std::int32_t kProtocolVersion = 2; // 2: Solve carries the fluid accuracy
+// 2: Solve carries the fluid accuracy; 3: displacements and forces travel as distributed rows
+constexpr std::int32_t kProtocolVersion = 3;
 // "FSIC" as a little-endian 32-bit number; identifies our messages on the wire.
 constexpr std::int64_t kMessageMagic = 0x43495346;
 

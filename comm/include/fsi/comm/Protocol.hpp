@@ -6,22 +6,34 @@
 //
 // Interface arrays are n x 3, row-major (x, y, z of entity 0, then entity 1, ...), SI units, in
 // the fluid's global interface order (points: ascending undecomposed mesh point label; faces:
-// undecomposed patch order). Values travel on the local roots only; counts, scalars and
-// integers reach every rank.
+// undecomposed patch order). Message values travel on the local roots only; counts, scalars
+// and integers reach every rank.
+//
+// The per-iteration arrays (displacements, forces) do not travel in the messages: they are
+// distributed interface arrays (Channel::scatterRows / gatherRows, DESIGN.md section 4), which
+// each fluid rank exchanges directly with the solid's root for its own points and faces.
 //
 //   Hello (Channel::open)  fluid: interfaceSizes = {points P, faces F}
 //   InterfaceGeometry      fluid -> solid  values = point coordinates (P x 3) [m], face centres
 //                                          (F x 3) [m], face area vectors (F x 3) [m^2] pointing
 //                                          out of the fluid
-//   Solve                  solid -> fluid  step = level, iteration; values = point displacements
-//                                          (P x 3) [m] from the original geometry; scalars =
-//                                          {time [s]} (the fluid's own accuracy) or {time,
-//                                          force tolerance, residual drop} with integers = {min
-//                                          SIMPLE iterations} (the accuracy the driver asks for)
-//   Forces                 fluid -> solid  same step and iteration; values = force of the fluid
-//                                          on the body per face (F x 3) [N]; integers = {SIMPLE
-//                                          iterations, accuracy met 0|1}; scalars = final
-//                                          residuals {U, p}
+//   row maps               fluid ranks -> solid root, once after InterfaceGeometry
+//                                          (Channel::sendRowMaps / receiveRowMaps): each fluid
+//                                          rank's global point numbers (array kPointRows, P rows
+//                                          of 3; a point on a processor boundary is held by
+//                                          every rank that has it) and face numbers (array
+//                                          kFaceRows, F rows of 3, a partition), in its own order
+//   Solve                  solid -> fluid  step = level, iteration; no values; scalars = {time
+//                                          [s]} (the fluid's own accuracy) or {time, force
+//                                          tolerance, residual drop} with integers = {min SIMPLE
+//                                          iterations} (the accuracy the driver asks for);
+//                                          then the point displacements [m] from the original
+//                                          geometry as kPointRows rows (scatterRows)
+//   Forces                 fluid -> solid  same step and iteration; no values; integers =
+//                                          {SIMPLE iterations, accuracy met 0|1}; scalars =
+//                                          final residuals {U, p} (and the band); then the force
+//                                          of the fluid on the body per face [N] as kFaceRows
+//                                          rows (gatherRows)
 //   Accept                 solid -> fluid  step = level; scalars = {time [s]} (names the output)
 //   Finish                 solid -> fluid  no payload
 //   Abort                  either way: text = reason (Channel::sendAbort)
@@ -41,6 +53,11 @@ namespace comm
 namespace protocol
 {
 
+// The distributed interface arrays' indices in the row maps, and their row width.
+constexpr int kPointRows = 0;
+constexpr int kFaceRows = 1;
+constexpr int kRowWidth = 3; // x, y, z
+
 struct InterfaceGeometry
 {
     std::vector<double> points;      // P x 3 [m]
@@ -52,24 +69,22 @@ struct Solve
 {
     std::int64_t level = 0;
     std::int64_t iteration = 0;
-    double time = 0;                   // structural time [s]
-    std::vector<double> displacements; // P x 3 [m] (local root)
-    bool accuracyGiven = false;        // false: the fluid's own controls apply
-    double forceTolerance = 0;         // relative force accuracy asked
-    double residualDrop = 0;           // residuals <= drop x first residuals (0: off)
-    std::int64_t minIterations = 1;    // SIMPLE iterations at least
+    double time = 0;                // structural time [s]
+    bool accuracyGiven = false;     // false: the fluid's own controls apply
+    double forceTolerance = 0;      // relative force accuracy asked
+    double residualDrop = 0;        // residuals <= drop x first residuals (0: off)
+    std::int64_t minIterations = 1; // SIMPLE iterations at least
 };
 
 struct Forces
 {
     std::int64_t level = 0;
     std::int64_t iteration = 0;
-    std::vector<double> faceForces; // F x 3 [N] (local root)
-    std::int64_t iterations = 0;    // SIMPLE iterations of the solve
-    bool converged = true;          // the asked accuracy was met before the iteration cap
-    std::vector<double> residuals;  // final residuals {U, p}
-    double band = 0; // > 0: a flow without a steady state, converged in the mean (faceForces
-                     // are the mean); the relative half-width of the force's band
+    std::int64_t iterations = 0;   // SIMPLE iterations of the solve
+    bool converged = true;         // the asked accuracy was met before the iteration cap
+    std::vector<double> residuals; // final residuals {U, p}
+    double band = 0; // > 0: a flow without a steady state, converged in the mean (the forces
+                     // that follow are the mean); the relative half-width of the force's band
 };
 
 struct Accept
@@ -133,7 +148,6 @@ inline Message encode(const Solve& s)
     m.kind = MessageKind::Solve;
     m.timeStep = s.level;
     m.iteration = s.iteration;
-    m.values = s.displacements;
     m.scalars = {s.time};
     if (s.accuracyGiven)
     {
@@ -144,9 +158,12 @@ inline Message encode(const Solve& s)
     return m;
 }
 
-inline Solve decodeSolve(Message&& m)
+inline Solve decodeSolve(const Message& m)
 {
     detail::require(m.kind == MessageKind::Solve, "expected Solve, got " + toString(m.kind));
+    detail::require(m.valueCount == 0, "a Solve carries no values (the displacements follow as "
+                                       "distributed rows); got " +
+                                           std::to_string(m.valueCount));
     detail::require(m.scalars.size() == 1 || (m.scalars.size() == 3 && m.integers.size() == 1),
                     "a Solve carries {time} or {time, force tolerance, residual drop} with "
                     "{min iterations}; got " +
@@ -156,7 +173,6 @@ inline Solve decodeSolve(Message&& m)
     s.level = m.timeStep;
     s.iteration = m.iteration;
     s.time = m.scalars[0];
-    s.displacements = std::move(m.values);
     if (m.scalars.size() == 3)
     {
         s.accuracyGiven = true;
@@ -175,7 +191,6 @@ inline Message encode(const Forces& f)
     m.kind = MessageKind::Forces;
     m.timeStep = f.level;
     m.iteration = f.iteration;
-    m.values = f.faceForces;
     m.integers = {f.iterations, f.converged ? 1 : 0};
     m.scalars = f.residuals;
     if (f.band > 0)
@@ -183,25 +198,23 @@ inline Message encode(const Forces& f)
     return m;
 }
 
-// Checks that the answer belongs to (level, iteration) and carries `faces` x 3 forces.
-inline Forces decodeForces(Message&& m, std::int64_t level, std::int64_t iteration,
-                           std::int64_t faces)
+// Checks that the answer belongs to (level, iteration); the forces follow as distributed rows.
+inline Forces decodeForces(Message&& m, std::int64_t level, std::int64_t iteration)
 {
     detail::require(m.kind == MessageKind::Forces, "expected Forces, got " + toString(m.kind));
     detail::require(m.timeStep == level && m.iteration == iteration,
                     "the fluid answered level " + std::to_string(m.timeStep) + " iteration " +
                         std::to_string(m.iteration) + " to level " + std::to_string(level) +
                         " iteration " + std::to_string(iteration));
-    detail::require(m.valueCount == 3 * faces, "the fluid sent " + std::to_string(m.valueCount) +
-                                                   " force values, expected " +
-                                                   std::to_string(3 * faces) + " (3 per face)");
+    detail::require(m.valueCount == 0, "a Forces message carries no values (the forces follow "
+                                       "as distributed rows); got " +
+                                           std::to_string(m.valueCount));
     detail::require(m.integers.size() == 2, "a Forces message carries {SIMPLE iterations, "
                                             "accuracy met}; got " +
                                                 std::to_string(m.integers.size()) + " integers");
     Forces f;
     f.level = m.timeStep;
     f.iteration = m.iteration;
-    f.faceForces = std::move(m.values);
     f.iterations = m.integers[0];
     f.converged = m.integers[1] != 0;
     detail::require(m.scalars.size() == 2 || m.scalars.size() == 3,
