@@ -7,6 +7,7 @@
 #include "pointFields.H"
 #include "syncTools.H"
 #include "valuePointPatchFields.H"
+#include "cpuTime.H"
 
 namespace Foam
 {
@@ -32,18 +33,6 @@ Foam::Field<T> allGathered(const Foam::Field<T>& local)
     Foam::Pstream::gatherList(all);
     Foam::Pstream::scatterList(all);
     return Foam::ListListOps::combine<Foam::Field<T>>(all, Foam::accessOp<Foam::Field<T>>());
-}
-
-// 1 / r^p for r^2 = r2 (p = 2 ... 5; checked at construction)
-inline Foam::scalar inversePower(const Foam::scalar r2, const Foam::label p)
-{
-    switch (p)
-    {
-        case 2: return 1/r2;
-        case 3: return 1/(r2*Foam::sqrt(r2));
-        case 4: return 1/(r2*r2);
-        default: return 1/(r2*r2*Foam::sqrt(r2));
-    }
 }
 
 // Unit normals of a patch's points: the sum of the adjacent faces' area vectors
@@ -144,6 +133,14 @@ void Foam::fsiInverseDistanceMotionSolver::readCoeffs()
         FatalErrorInFunction
             << where << ": exponent " << exponent_ << " must be 2, 3, 4 or 5" << exit(FatalError);
     }
+    openingAngle_ = coeffDict().getOrDefault<scalar>("openingAngle", 0);
+    if (!(openingAngle_ >= 0 && openingAngle_ < 1))
+    {
+        FatalErrorInFunction
+            << where << ": openingAngle " << openingAngle_ << " must be in [0, 1): 0 sums every"
+            << " patch point exactly, 0.1 to 0.3 expands far clusters of them"
+            << exit(FatalError);
+    }
 }
 
 
@@ -185,6 +182,15 @@ void Foam::fsiInverseDistanceMotionSolver::collectSources()
     reach_ = boundBox(sourcePoints0_, false);
     reach_.min() -= vector::uniform(decayDistance_);
     reach_.max() += vector::uniform(decayDistance_);
+    tree_.reset
+    (
+        new inverseDistanceTree(sourcePoints0_, sourceAreas_, exponent_, openingAngle_)
+    );
+    Info<< typeName << ": " << sourcePoints0_.size() << " moving patch points ("
+        << tree_->nNodes() << " tree nodes), decay distance " << decayDistance_
+        << " m, affine reach " << affineDistance_ << " m, exponent " << exponent_
+        << ", opening angle " << openingAngle_
+        << (openingAngle_ > 0 ? "" : " (exact sums)") << endl;
 }
 
 
@@ -258,9 +264,13 @@ void Foam::fsiInverseDistanceMotionSolver::solve()
     vectorField t;
     tensorField m;
     gatherSourceMotions(t, m);
+    tree_->setTranslations(t);
     // the affine part M_i (x - x_i) = M_i x - c_i
     const vectorField c(m & sourcePoints0_);
 
+    const cpuTime clock;
+    label inReach = 0;
+    label expansions = 0;
     const pointField& x0 = points0();
     const scalar D2 = sqr(decayDistance_);
     const scalar L2 = sqr(affineDistance_);
@@ -272,50 +282,45 @@ void Foam::fsiInverseDistanceMotionSolver::solve()
             continue;   // set by the patch's fixedValue below
         }
         const point& x = x0[pointi];
-        if (!reach_.contains(x))
-        {
-            d[pointi] = Zero;
-            continue;
-        }
         scalar r2Min = GREAT;
-        label nearest = -1;
-        scalar weight = 0;
-        vector sumT(Zero);      // sum of w t_i - w g c_i
-        tensor sumM(Zero);      // sum of w g M_i
-        forAll(sourcePoints0_, i)
-        {
-            const scalar r2 = magSqr(x - sourcePoints0_[i]);
-            if (r2 < r2Min)
-            {
-                r2Min = r2;
-                nearest = i;
-            }
-            const scalar w = sourceAreas_[i]*inversePower(max(r2, VSMALL), exponent_);
-            weight += w;
-            sumT += w*t[i];
-            if (r2 < L2)
-            {
-                const scalar g = sqr(1 - r2/L2);
-                sumM += (w*g)*m[i];
-                sumT -= (w*g)*c[i];
-            }
-        }
+        const label nearest = reach_.contains(x) ? tree_->nearest(x, r2Min) : -1;
         if (r2Min >= D2)
         {
-            d[pointi] = Zero;
+            d[pointi] = Zero;   // beyond the decay distance of every patch point
+            continue;
         }
-        else if (r2Min < sqr(SMALL*decayDistance_))
+        if (r2Min < sqr(SMALL*decayDistance_))
         {
             d[pointi] = t[nearest];   // on a patch point (another rank's)
+            continue;
         }
-        else
-        {
-            const scalar s = sqrt(r2Min/D2);
-            d[pointi] = (1 - s*s*(3 - 2*s))*(sumT + (sumM & x))/weight;
-        }
+        ++inReach;
+        scalar weight = 0;
+        vector sumT(Zero);      // sum of w t_i
+        vector sumC(Zero);      // sum of w g c_i
+        tensor sumM(Zero);      // sum of w g M_i
+        expansions += tree_->sum
+        (
+            x, affineDistance_, weight, sumT,
+            [&](const label i, const scalar r2, const scalar w)
+            {
+                if (r2 < L2)
+                {
+                    const scalar g = sqr(1 - r2/L2);
+                    sumM += (w*g)*m[i];
+                    sumC += (w*g)*c[i];
+                }
+            }
+        );
+        const scalar s = sqrt(r2Min/D2);
+        d[pointi] = (1 - s*s*(3 - 2*s))*(sumT - sumC + (sumM & x))/weight;
     }
     pointDisplacement_.correctBoundaryConditions();
     synchroniseSharedPoints();
+    Info<< typeName << ": " << returnReduce(inReach, sumOp<label>()) << " points within the"
+        << " decay distance, " << returnReduce(expansions, sumOp<label>())
+        << " cluster expansions, " << returnReduce(clock.elapsedCpuTime(), maxOp<scalar>())
+        << " s" << endl;
 }
 
 

@@ -5,13 +5,15 @@
 # using stock moveDynamicMesh, and run checkMesh on the moved mesh.
 #
 #   tools/motionCheck.sh --mesh DIR/fluid --out RUNDIR [--tip-twist-deg -4] [--tip-deflection 0.003]
-#                        [--bending beam|shear]
+#                        [--bending beam|shear] [--opening-angle THETA]
 # (--bending: see foilMotion.py; beam, the default, turns the sections with the slope as the
-# structural solver's displacement does.) A mesh whose dynamicMeshDict selects fsiInverseDistance
+# structural solver's displacement does. --opening-angle: fsiInverseDistanceCoeffs openingAngle
+# for this motion, fsiInverseDistance meshes only; the moved points are written with 17 digits
+# in RUNDIR/1/polyMesh/points.) A mesh whose dynamicMeshDict selects fsiInverseDistance
 # needs libfsiMeshMotion.so: taken from the build next to fluid-app on PATH (or FSI_BUILD_DIR).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-mesh="" out="" twist=-4 deflection=0.003 bending=beam
+mesh="" out="" twist=-4 deflection=0.003 bending=beam openingAngle=""
 while [ $# -gt 0 ]; do
     case "$1" in
         --mesh) mesh="$2"; shift 2 ;;
@@ -19,6 +21,7 @@ while [ $# -gt 0 ]; do
         --tip-twist-deg) twist="$2"; shift 2 ;;
         --tip-deflection) deflection="$2"; shift 2 ;;
         --bending) bending="$2"; shift 2 ;;
+        --opening-angle) openingAngle="$2"; shift 2 ;;
         *) echo "error: motionCheck.sh: unknown option '$1'" >&2; exit 1 ;;
     esac
 done
@@ -37,6 +40,12 @@ cd "$out"
 foamDictionary system/controlDict -entry endTime -set 1 > /dev/null
 foamDictionary system/controlDict -entry writeInterval -set 1 > /dev/null
 foamDictionary system/controlDict -entry writeFormat -set ascii > /dev/null
+foamDictionary system/controlDict -entry writePrecision -set 17 > /dev/null
+if [ -n "$openingAngle" ]; then
+    grep -q fsiInverseDistanceCoeffs constant/dynamicMeshDict ||
+        { echo "error: motionCheck.sh: --opening-angle needs a mesh moved by fsiInverseDistance (constant/dynamicMeshDict)" >&2; exit 1; }
+    foamDictionary constant/dynamicMeshDict -entry fsiInverseDistanceCoeffs/openingAngle -set "$openingAngle" > /dev/null
+fi
 foamDictionary system/controlDict -entry functions -remove > /dev/null
 foamFormatConvert -constant > log.foamFormatConvert 2>&1
 /usr/bin/python3 "$here/foilMotion.py" . --tip-twist-deg "$twist" --tip-deflection "$deflection" --bending "$bending"
