@@ -224,9 +224,9 @@ void Foam::fluidSolidCoupling::answerSolve
     report.faceForces.assign(3*f.size(), 0.0);
     forAll(f, facei)
     {
-        for (direction c = 0; c < 3; ++c)
+        for (direction k = 0; k < 3; ++k)
         {
-            report.faceForces[3*facei + c] = f[facei][c];
+            report.faceForces[3*facei + k] = f[facei][k];
         }
     }
     report.simpleIterations = r.iterations;
@@ -251,7 +251,8 @@ void Foam::fluidSolidCoupling::answerSolve
     // every rank sends its own faces' forces to the solid (no gather here)
     const clockTime send;
     transport_->sendForces(c, report);
-    const scalar exchangeSeconds = returnReduce(c.exchangeSeconds + send.elapsedTime(), maxOp<scalar>());
+    const scalar exchangeSeconds =
+        returnReduce(c.exchangeSeconds + send.elapsedTime(), maxOp<scalar>());
     logSolve(c, r, total, gMax(mag(displacement_)()), wallSeconds, exchangeSeconds);
 }
 
