@@ -103,6 +103,8 @@ struct DriverFlags
     int checkWorldSize = 0; // --check-world-size N (fluid with redirect): MPI_COMM_WORLD size
     int pauseBefore = -1;   // --pause-before N S: sleep S seconds before the N-th operation
     double pauseSeconds = 0.0;
+    int dieBeforeRows = -1;       // --die-before-rows N (solid): _exit(3) after the N-th Solve
+                                  // header, before its rows are sent
     bool overlapFaceRows = false; // --overlap-face-rows (fluid): the last rank also holds face
                                   // row 0 of array 5 (a map that is not a partition)
 };
@@ -158,6 +160,8 @@ inline DriverFlags parseDriverFlags(int argc, char** argv)
             f.expectPeerProgram = next();
         else if (a == "--check-world-size")
             f.checkWorldSize = std::stoi(next());
+        else if (a == "--die-before-rows")
+            f.dieBeforeRows = std::stoi(next());
         else if (a == "--overlap-face-rows")
             f.overlapFaceRows = true;
         else if (a == "--pause-before")

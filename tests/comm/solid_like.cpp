@@ -51,6 +51,7 @@ void run(const LaunchOptions& launch, const DriverFlags& flags, std::optional<Ch
 
     std::int64_t step = 0;
     int rounds = 0;
+    int solves = 0;
     for (std::size_t round = 0; round < kSizes.size(); ++round)
     {
         const std::int64_t n = kSizes[round];
@@ -68,6 +69,13 @@ void run(const LaunchOptions& launch, const DriverFlags& flags, std::optional<Ch
             const bool wrongKind = inject.before("send Solve");
             channel.send(wrongKind ? MessageKind::Accept : MessageKind::Solve, step, iteration,
                          std::move(displacement));
+            if (++solves == flags.dieBeforeRows)
+            {
+                std::fprintf(stderr, "solid-like: test: dying after Solve %d, before its rows\n",
+                             solves);
+                std::fflush(stderr);
+                ::_exit(3);
+            }
             if (!wrongKind)
             {
                 std::vector<double> rows;
