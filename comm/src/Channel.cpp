@@ -203,9 +203,16 @@ int messageCount(std::size_t n, const std::string& what)
     return static_cast<int>(n);
 }
 
-// waitBounded for a transfer with the peer: a timeout blames the peer, on this rank.
+enum class Transfer
+{
+    Send,
+    Receive,
+};
+
+// waitBounded for a transfer with the peer: a timeout blames the peer, on this rank. A pending
+// receive is cancelled; a send is not (cancelling sends is deprecated in MPI 4).
 void waitForPeer(MPI_Request& request, double timeout, const std::string& what, int rank,
-                 MPI_Status* status = MPI_STATUS_IGNORE)
+                 Transfer transfer, MPI_Status* status = MPI_STATUS_IGNORE)
 {
     try
     {
@@ -213,7 +220,8 @@ void waitForPeer(MPI_Request& request, double timeout, const std::string& what, 
     }
     catch (const TimeoutError&)
     {
-        MPI_Cancel(&request);
+        if (transfer == Transfer::Receive)
+            MPI_Cancel(&request);
         throw TimeoutError("fsi::comm: " + what + ": not complete within " + seconds(timeout) +
                                "; the peer exited, crashed or hangs",
                            false, rank);
@@ -252,7 +260,7 @@ std::vector<T> receiveSized(MPI_Comm comm, int source, int tag, MPI_Datatype typ
     std::vector<T> values(static_cast<std::size_t>(count));
     MPI_Request request = MPI_REQUEST_NULL;
     checkMpi(MPI_Irecv(values.data(), count, type, source, tag, comm, &request), what);
-    waitForPeer(request, timeout, what, rank);
+    waitForPeer(request, timeout, what, rank, Transfer::Receive);
     return values;
 }
 
@@ -892,7 +900,7 @@ void Channel::sendRowMaps(const std::vector<std::vector<std::int64_t>>& rowsOfEa
         checkMpi(MPI_Isend(words.data(), messageCount(words.size(), what), MPI_INT64_T, 0,
                            kTagRowMap, interComm_, &request),
                  what);
-        waitForPeer(request, options_.timeoutSeconds, what, localRank_);
+        waitForPeer(request, options_.timeoutSeconds, what, localRank_, Transfer::Send);
     }
     catch (...)
     {
@@ -999,7 +1007,7 @@ void Channel::scatterRows(const RowMap& map, const std::vector<double>& whole)
             }
             for (std::size_t r = 0; r < ranks; ++r)
                 waitForPeer(requests[r], options_.timeoutSeconds,
-                            what + " (rank " + std::to_string(r) + ")", 0);
+                            what + " (rank " + std::to_string(r) + ")", 0, Transfer::Send);
         });
 }
 
@@ -1038,7 +1046,7 @@ void Channel::sendOwnRows(const std::vector<double>& own)
         checkMpi(MPI_Isend(own.data(), messageCount(own.size(), what), MPI_DOUBLE, 0, kTagRows,
                            interComm_, &request),
                  what);
-        waitForPeer(request, options_.timeoutSeconds, what, localRank_);
+        waitForPeer(request, options_.timeoutSeconds, what, localRank_, Transfer::Send);
     }
     catch (...)
     {
@@ -1073,7 +1081,8 @@ std::vector<double> Channel::gatherRows(const RowMap& map)
             {
                 MPI_Status status;
                 waitForPeer(requests[r], options_.timeoutSeconds,
-                            what + " (rank " + std::to_string(r) + ")", 0, &status);
+                            what + " (rank " + std::to_string(r) + ")", 0, Transfer::Receive,
+                            &status);
                 checkMpi(MPI_Get_count(&status, MPI_DOUBLE, &counts[r]), what);
             }
             whole.assign(static_cast<std::size_t>(map.rows) * width, 0.0);
