@@ -98,6 +98,10 @@ Foam::label Foam::inverseDistanceTree::build(const label begin, const label end)
 void Foam::inverseDistanceTree::setTranslations(const vectorField& translations)
 {
     translations_ = translations;
+    if (openingAngle_ <= 0)
+    {
+        return;   // the direct sum uses no cluster moments
+    }
     for (node& n : nodes_)
     {
         n.t0 = Zero;
