@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""Mesh study of the hydrofoil's viscoelastic history on three presets.
+"""Mesh study of the hydrofoil on three presets: the viscoelastic history, or the rigid foil.
 
-usage: history_gci.py [--model NAME] [--out GCI_CSV] [--table] COARSE MEDIUM FINE
+usage: history_gci.py [--rigid] [--model NAME] [--out GCI_CSV] [--table] COARSE MEDIUM FINE
 
 COARSE, MEDIUM, FINE: run folders of the same case on three presets (a `run.sh` output folder,
 or a bench-fsi work folder whose iqn-ils/ run is used), each with results/visco/history.csv and
@@ -13,8 +13,17 @@ scripts/gci.py (Celik et al. 2008: observed order, extrapolated value, GCI_fine;
 three values converge monotonically) and writes GCI_CSV with the columns
     quantity,model,levels,observed_order,extrapolated,gci_fine_pct,convergence,
     coarse,medium,fine,rel_diff_coarse_fine,rel_diff_medium_fine
-(quantity: e.g. tip_aoa_deg@t=360). --table prints the same as a Markdown table. Exits 1 with a
-one-line error when a folder lacks a file or a time.
+(quantity: e.g. tip_aoa_deg@t=360), then asymptotic_ratio (gci.py: 1 in the asymptotic range)
+and asymptotic_range (yes when the sequence is monotone with an observed order between 1 and 3
+and every level's solve met its stopping test). --table prints the same as a Markdown table.
+
+--rigid: COARSE, MEDIUM, FINE are rigid-foil runs (cases/hydrofoil/rigid.sh folders with
+rigid.csv, or blcheck.sh folders with rigid/rigid.csv; the cell count is rigid.csv's); the
+quantities are the lift -F_y [N], the drag F_x [N] and the root pitching moment M_z [N m]
+(quantity names lift_N, drag_N, root_moment_z_Nm), and a level counts as settled when its
+rigid.csv says converged = 1.
+
+Exits 1 with a one-line error when a folder lacks a file or a time.
 """
 import csv
 import math
@@ -25,6 +34,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import gci  # noqa: E402
 
 TIMES = (0.0, 50.0, 360.0, 3600.0)
+RIGID_QUANTITIES = ("lift_N", "drag_N", "root_moment_z_Nm")
 QUANTITIES = (("tip_aoa_deg", lambda r: float(r["tip_aoa_deg"])),
               ("lift_N", lambda r: -float(r["Fy"])),
               ("drag_N", lambda r: float(r["Fx"])))
@@ -68,42 +78,83 @@ def values_at_times(history):
     return out
 
 
+def rigid_run(folder):
+    """cells, {quantity: value} and converged (bool) of a rigid.sh / blcheck.sh folder."""
+    for path in (os.path.join(folder, "rigid.csv"), os.path.join(folder, "rigid", "rigid.csv")):
+        if os.path.isfile(path):
+            break
+    else:
+        fail(f"{folder}: no rigid.csv (nor rigid/rigid.csv); give a rigid.sh or blcheck.sh folder")
+    rows = list(csv.DictReader(open(path)))
+    if len(rows) != 1:
+        fail(f"{path}: one row expected, found {len(rows)}")
+    try:
+        return (int(rows[0]["cells"]), {q: float(rows[0][q]) for q in RIGID_QUANTITIES},
+                rows[0]["converged"] == "1")
+    except (KeyError, ValueError) as e:
+        fail(f"{path}: column cells, converged or {'/'.join(RIGID_QUANTITIES)} missing or not a "
+             f"number ({e})")
+
+
+def history_runs(folders):
+    """cells, {quantity@t: value} and converged per folder (a history's accepted levels are
+    converged by the driver's acceptance rule)."""
+    out = []
+    for folder in folders:
+        history, summary = run_files(folder)
+        values = values_at_times(history)
+        out.append((fluid_cells(summary),
+                    {f"{name}@t={t:g}": values[t][name] for t in TIMES for name, _ in QUANTITIES},
+                    True))
+    return out
+
+
 def main(argv):
-    model, out, table, folders = "laminar-upwind", None, False, []
+    model, out, table, rigid, folders = None, None, False, False, []
     i = 0
     while i < len(argv):
-        if argv[i] == "--model":
+        if argv[i] == "--rigid":
+            rigid, i = True, i + 1
+        elif argv[i] == "--model":
             model, i = argv[i + 1], i + 2
         elif argv[i] == "--out":
             out, i = argv[i + 1], i + 2
         elif argv[i] == "--table":
             table, i = True, i + 1
         elif argv[i].startswith("--"):
-            fail(f"unknown option {argv[i]} (--model NAME, --out FILE, --table)")
+            fail(f"unknown option {argv[i]} (--rigid, --model NAME, --out FILE, --table)")
         else:
             folders.append(argv[i])
             i += 1
     if len(folders) != 3:
         fail("three run folders needed, coarsest first (COARSE MEDIUM FINE)")
-    runs = [run_files(f) for f in folders]
-    cells = [fluid_cells(s) for _, s in runs]
+    if model is None:
+        model = "turbulent-upwind-cgrid" if rigid else "laminar-upwind"
+    runs = [rigid_run(f) for f in folders] if rigid else history_runs(folders)
+    cells = [c for c, _, _ in runs]
     if not cells[0] < cells[1] < cells[2]:
         fail(f"fluid cells {cells}: the folders must go from coarsest to finest")
+    settled = all(ok for _, _, ok in runs)
+    if not settled:
+        print("history_gci.py: warning: levels not converged: "
+              + " ".join(f for f, (_, _, ok) in zip(folders, runs) if not ok), file=sys.stderr)
     h = [c ** (-1.0 / 3.0) for c in cells]
-    values = [values_at_times(hist) for hist, _ in runs]
     rows = []
-    for t in TIMES:
-        for name, _ in QUANTITIES:
-            phi = [v[t][name] for v in values]
-            g = gci.gci(h, phi)
-            rows.append({
-                "quantity": f"{name}@t={t:g}", "model": model,
-                "levels": f"{cells[0]} {cells[1]} {cells[2]}",
-                "observed_order": g["observed_order"], "extrapolated": g["extrapolated"],
-                "gci_fine_pct": g["gci_fine_pct"], "convergence": g["convergence"],
-                "coarse": phi[0], "medium": phi[1], "fine": phi[2],
-                "rel_diff_coarse_fine": (phi[0] - phi[2]) / phi[2],
-                "rel_diff_medium_fine": (phi[1] - phi[2]) / phi[2]})
+    for quantity in runs[0][1]:
+        phi = [values[quantity] for _, values, _ in runs]
+        g = gci.gci(h, phi)
+        asymptotic = (settled and g["convergence"] == "monotone"
+                      and 1.0 <= g["observed_order"] <= 3.0)
+        rows.append({
+            "quantity": quantity, "model": model,
+            "levels": f"{cells[0]} {cells[1]} {cells[2]}",
+            "observed_order": g["observed_order"], "extrapolated": g["extrapolated"],
+            "gci_fine_pct": g["gci_fine_pct"], "convergence": g["convergence"],
+            "coarse": phi[0], "medium": phi[1], "fine": phi[2],
+            "rel_diff_coarse_fine": (phi[0] - phi[2]) / phi[2],
+            "rel_diff_medium_fine": (phi[1] - phi[2]) / phi[2],
+            "asymptotic_ratio": g["asymptotic_ratio"],
+            "asymptotic_range": "yes" if asymptotic else "no"})
     columns = list(rows[0].keys())
     if out:
         with open(out, "w", newline="") as f:

@@ -92,5 +92,58 @@ class HistoryGciTest(unittest.TestCase):
             self.assertIn("t = 50 s", r.stderr)
 
 
+class RigidGciTest(unittest.TestCase):
+    """history_gci.py --rigid on three synthetic rigid.sh / blcheck.sh folders whose loads
+    follow phi = phi_ext + C h^1.5 with h = cells^(-1/3) (the cgrid presets' counts)."""
+
+    CELLS = (276336, 595390, 1277256)
+
+    def make_run(self, root, name, cells, converged=1, nested=False):
+        folder = os.path.join(root, name)
+        target = os.path.join(folder, "rigid") if nested else folder
+        os.makedirs(target)
+        h = cells ** (-1.0 / 3.0)
+        with open(os.path.join(target, "rigid.csv"), "w") as f:
+            f.write("cells,flow,scheme,iterations,converged,lift_N,drag_N,root_moment_z_Nm\n")
+            f.write("%d,turbulent,upwind,900,%d,%.15g,%.15g,%.15g\n"
+                    % (cells, converged, 1.6 + 40.0 * h ** 1.5, 0.2 + 9.0 * h ** 1.5, -0.03 - 0.5 * h ** 1.5))
+        return folder
+
+    def test_first_order_sequence(self):
+        import csv
+        import subprocess
+        import tempfile
+        script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..",
+                              "scripts", "history_gci.py")
+        with tempfile.TemporaryDirectory() as root:
+            runs = [self.make_run(root, "coarse", self.CELLS[0], nested=True),
+                    self.make_run(root, "medium", self.CELLS[1]),
+                    self.make_run(root, "fine", self.CELLS[2], nested=True)]
+            out = os.path.join(root, "gci.csv")
+            subprocess.run([sys.executable, script, "--rigid", "--out", out] + runs, check=True)
+            with open(out) as f:
+                rows = {r["quantity"]: r for r in csv.DictReader(f)}
+            self.assertEqual(sorted(rows), ["drag_N", "lift_N", "root_moment_z_Nm"])
+            for q, ext in (("lift_N", 1.6), ("drag_N", 0.2), ("root_moment_z_Nm", -0.03)):
+                self.assertEqual(rows[q]["convergence"], "monotone")
+                self.assertAlmostEqual(float(rows[q]["observed_order"]), 1.5, places=4)
+                self.assertAlmostEqual(float(rows[q]["extrapolated"]), ext, places=5)
+                self.assertEqual(rows[q]["asymptotic_range"], "yes")
+                self.assertEqual(rows[q]["model"], "turbulent-upwind-cgrid")
+            # a level whose solve did not meet its stopping test: no asymptotic claim, a warning
+            runs[1] = self.make_run(root, "medium-capped", self.CELLS[1], converged=0)
+            r = subprocess.run([sys.executable, script, "--rigid", "--out", out] + runs,
+                               capture_output=True, text=True, check=True)
+            self.assertIn("not converged", r.stderr)
+            with open(out) as f:
+                rows = {r["quantity"]: r for r in csv.DictReader(f)}
+            self.assertEqual(rows["lift_N"]["asymptotic_range"], "no")
+            # a folder without rigid.csv: one-line error, exit 1
+            r = subprocess.run([sys.executable, script, "--rigid"] + runs[:2] + [root],
+                               capture_output=True, text=True)
+            self.assertEqual(r.returncode, 1)
+            self.assertIn("no rigid.csv", r.stderr)
+
+
 if __name__ == "__main__":
     unittest.main()

@@ -1,0 +1,86 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# Rigid 3-D hydrofoil on the boundary-layer (cgrid) presets coarse / medium / fine: a systematic
+# refinement (every count x 1.3 per level, cases/hydrofoil/README.md "Boundary-layer fluid
+# mesh"), one rigid steady solve per level with cases/hydrofoil/blcheck.sh (mesh, motion check at
+# -12 deg / 30 mm, rigid.sh solve to an estimated force error of 1e-5 |F| held 100 iterations,
+# first-cell y+ by OpenFOAM's yPlus function object).
+# Quantities: lift -F_y, drag F_x [N] and the root pitching moment M_z about the root quarter
+# chord [N m]. scripts/history_gci.py --rigid gives the observed order, the Richardson value and
+# GCI_fine (Celik et al. 2008) -> gci.csv (quantity,model,levels,observed_order,extrapolated,
+# gci_fine_pct, then convergence, the three values, the relative differences to the finest,
+# asymptotic_ratio, asymptotic_range).
+# error_vs_runtime.csv: the standard columns (size = fluid cells, cores = MPI ranks, wall_s =
+# the rigid solve); reference = the extrapolated value where the three levels are in the
+# asymptotic range, else the finest level's value (its rows then have rel_error 0); extra
+# columns cpu_s, iterations, converged, yplus_max, motion.
+# levels.csv: every level's blcheck line as columns.
+# Cost on 2 cores: coarse ~9 min, medium ~25 min, fine more than an hour.
+# Environment:
+#   H3D_LEVELS    presets, coarse to fine (default "coarse medium fine"; three needed)
+#   H3D_FLOW      flow model (default turbulent: k-omega SST; see the README's flow models)
+#   H3D_SCHEME    convection scheme (default upwind: the second-order schemes have no steady
+#                 state at the root junction on this mesh, README "Rigid 3-D solve")
+#   H3D_RUNS      run folders (default $FSI_VERIFY_DIR/runs, not tracked)
+#   H3D_REUSE=1   keep a level whose RUN/rigid/rigid.csv exists instead of redoing it
+set -euo pipefail
+: "${FSI_VERIFY_DIR:?run through scripts/verify hydrofoil-3d-rigid}"
+root=${FSI_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}
+export PATH=${FSI_BUILD_DIR:-$root/build}/bin:$PATH
+levels=${H3D_LEVELS:-"coarse medium fine"}
+flow=${H3D_FLOW:-turbulent}
+scheme=${H3D_SCHEME:-upwind}
+runs=${H3D_RUNS:-$FSI_VERIFY_DIR/runs}
+reuse=${H3D_REUSE:-0}
+np=2
+set -- $levels
+[ $# = 3 ] || { echo "error: hydrofoil-3d-rigid: H3D_LEVELS='$levels' must name three presets, coarse to fine" >&2; exit 2; }
+mkdir -p "$runs"
+
+folders=()
+raw=$FSI_VERIFY_DIR/levels.csv
+: > "$raw.tmp"
+for level in $levels; do
+    r=$runs/$flow-$scheme-$level
+    if [ "$reuse" = 1 ] && [ -f "$r/rigid/rigid.csv" ] && [ -f "$r/blcheck.txt" ]; then
+        echo "hydrofoil-3d-rigid: reusing $r"
+    else
+        echo "hydrofoil-3d-rigid: $level ($(date +%H:%M:%S), load $(cut -d' ' -f1 /proc/loadavg))"
+        rm -rf "$r"
+        # blcheck exits 1 when y+ > 1 or the motion check fails: recorded in its line, not fatal
+        "$root/cases/hydrofoil/blcheck.sh" --out "$r" --preset "$level" --flow "$flow" \
+            --scheme "$scheme" --np "$np" > "$r.log" 2>&1 || true
+        grep '^blcheck:' "$r.log" > "$r/blcheck.txt" ||
+            { tail -5 "$r.log" >&2; echo "error: hydrofoil-3d-rigid: $level failed (see $r.log)" >&2; exit 1; }
+    fi
+    cat "$r/blcheck.txt" >> "$raw.tmp"
+    tail -n 1 "$r/blcheck.txt"
+    folders+=("$r")
+done
+
+"$FSI_PYTHON" "$root/scripts/history_gci.py" --rigid --model "$flow-$scheme-cgrid" \
+    --out "$FSI_VERIFY_DIR/gci.csv" --table "${folders[@]}"
+
+"$FSI_PYTHON" - "$raw.tmp" "$raw" "$FSI_VERIFY_DIR" "$np" "${folders[@]}" <<'PY'
+import csv, os, sys
+rawIn, rawOut, outDir, np = sys.argv[1:5]
+folders = sys.argv[5:]
+lines = [dict(kv.split("=", 1) for kv in l.split()[1:]) for l in open(rawIn) if l.strip()]
+with open(rawOut, "w", newline="") as f:
+    w = csv.DictWriter(f, fieldnames=list(lines[0].keys()))
+    w.writeheader()
+    w.writerows(lines)
+os.remove(rawIn)
+gci = {r["quantity"]: r for r in csv.DictReader(open(os.path.join(outDir, "gci.csv")))}
+with open(os.path.join(outDir, "error_vs_runtime.csv"), "w") as f:
+    f.write("level,size,cores,wall_s,quantity,value,reference,rel_error,cpu_s,iterations,"
+            "converged,yplus_max,motion\n")
+    for q in ("lift_N", "drag_N", "root_moment_z_Nm"):
+        g = gci[q]
+        ref = float(g["extrapolated"]) if g["asymptotic_range"] == "yes" else float(g["fine"])
+        for l in lines:
+            v = float(l[q])
+            f.write(",".join([l["preset"], l["cells"], np, l["wall_s"], q, "%.8g" % v, "%.8g" % ref,
+                              "%.6e" % (abs(v - ref) / abs(ref)), l["cpu_s"], l["iterations"],
+                              l["converged"], l["yplus_max"], l["motion"]]) + "\n")
+PY
