@@ -6,19 +6,21 @@
 # default) and prints one line with the cells, the motion check, the first-cell y+ and the loads:
 #
 #   cases/hydrofoil/blcheck.sh --out RUNDIR [--preset coarse|medium|fine] [--flow turbulent]
-#       [--scheme upwind] [--np 2] [--max-iterations 3000]
+#       [--scheme upwind] [--np 2] [--max-iterations 3000] [--init-from BLCHECK_RUN]
 #
 #   blcheck: preset=P cells=N motion=OK motion_max_nonorth_deg=X iterations=N converged=0|1
 #     yplus_max=X yplus_mean=X yplus_le1_pct=X tip_yplus_max=X lift_N=X drag_N=X
 #     root_moment_z_Nm=X cpu_s=X wall_s=X
 #
+# --init-from: the rigid solve starts from another blcheck.sh run's flow (e.g. the next coarser
+# preset; rigid.sh --init-from BLCHECK_RUN/rigid).
 # Exit 1 when the motion check fails or the first-cell y+ exceeds 1 anywhere on the foil (the
 # mesh's promise); the line is printed either way. Cost: coarse about 9 min on 2 cores (mesh
 # 20 s, motion 30 s, rigid solve 8 min), medium ~25 min, fine more than an hour.
 # Needs what mesh.sh and rigid.sh need (OpenFOAM v1912, gmsh, the build's bin/ on PATH).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-out="" preset=coarse flow=turbulent scheme=upwind np=2 maxIt=3000
+out="" preset=coarse flow=turbulent scheme=upwind np=2 maxIt=3000 initFrom=""
 die() { echo "error: blcheck.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
     case "$1" in
@@ -28,12 +30,15 @@ while [ $# -gt 0 ]; do
         --scheme) scheme="$2"; shift 2 ;;
         --np) np="$2"; shift 2 ;;
         --max-iterations) maxIt="$2"; shift 2 ;;
-        -h|--help) sed -n '3,18p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        --init-from) initFrom="$2"; shift 2 ;;
+        -h|--help) sed -n '3,20p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) die "unknown option '$1' (see --help)" ;;
     esac
 done
 [ -n "$out" ] || die "--out RUNDIR is required (a run folder outside git)"
 case "$preset" in coarse|medium|fine) ;; *) die "--preset must be coarse, medium or fine" ;; esac
+[ -z "$initFrom" ] || [ -f "$initFrom/rigid/rigid.csv" ] ||
+    die "--init-from '$initFrom' is not a finished blcheck.sh run (no rigid/rigid.csv)"
 command -v fluid-app > /dev/null || die "fluid-app is not on PATH (put the build's bin/ first)"
 log() { echo "[blcheck.sh $(date +%H:%M:%S)] $*"; }
 mkdir -p "$out"; out="$(cd "$out" && pwd)"
@@ -48,7 +53,8 @@ motion=OK
 nonorth=$(awk '/non-orthogonality Max/ {print $4; exit}' "$out/motion/log.checkMesh" 2>/dev/null || true)
 log "rigid solve ($flow, $scheme)"
 "$here/rigid.sh" --mesh "$out/mesh/fluid" --out "$out/rigid" --flow "$flow" --scheme "$scheme" \
-    --np "$np" --max-iterations "$maxIt" > "$out/log.rigid" 2>&1 ||
+    --np "$np" --max-iterations "$maxIt" ${initFrom:+--init-from "$(cd "$initFrom" && pwd)/rigid"} \
+    > "$out/log.rigid" 2>&1 ||
     die "rigid.sh failed (see $out/log.rigid)"
 /usr/bin/python3 - "$out/rigid/rigid.csv" "$preset" "$motion" "${nonorth:-nan}" <<'EOP'
 import csv, sys

@@ -5,10 +5,15 @@
 #
 #   cases/hydrofoil/rigid.sh --mesh DIR/fluid --out RUNDIR [--flow laminar|transition|turbulent]
 #       [--scheme upwind|linearUpwind] [--np 2] [--tolerance 1e-5] [--max-iterations 3000]
+#       [--init-from RUN]
 #
 #   --tolerance T        stop when the estimated force error is <= T |F|, held 100 iterations
 #                        (fsiDict rigid/estimateForceError; the 2-D section mode's criterion)
 #   --max-iterations N   cap on SIMPLE iterations (not converged: reported, exit 0)
+#   --init-from RUN      start from the flow of a finished rigid.sh run RUN (another mesh of the
+#                        same domain, e.g. the next coarser preset; same flow model), mapped
+#                        nearest-cell (tools/mapInitialFields.sh): grid sequencing, fewer
+#                        iterations; the stopping test is unchanged
 #
 # Writes RUNDIR/case (the OpenFOAM case, tools/fluidCase.sh) and RUNDIR/rigid.csv, one row:
 # cells, flow, scheme, iterations, converged, lift = -F_y, drag = F_x (N), root pitching moment
@@ -18,7 +23,7 @@
 # fluid-app must be on PATH (scripts/run and scripts/verify put the build's bin/ first).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-mesh="" out="" flow=laminar scheme=upwind np=2 tol=1e-5 maxIt=3000
+mesh="" out="" flow=laminar scheme=upwind np=2 tol=1e-5 maxIt=3000 initFrom=""
 die() { echo "error: rigid.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
     case "$1" in
@@ -29,7 +34,8 @@ while [ $# -gt 0 ]; do
         --np) np="$2"; shift 2 ;;
         --tolerance) tol="$2"; shift 2 ;;
         --max-iterations) maxIt="$2"; shift 2 ;;
-        -h|--help) sed -n '3,17p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        --init-from) initFrom="$2"; shift 2 ;;
+        -h|--help) sed -n '3,22p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) die "unknown option '$1' (see --help)" ;;
     esac
 done
@@ -39,6 +45,8 @@ done
 [[ "$np" =~ ^[1-9][0-9]*$ ]] || die "--np '$np' must be a positive integer"
 [[ "$maxIt" =~ ^[1-9][0-9]*$ ]] || die "--max-iterations '$maxIt' must be a positive integer"
 awk -v t="$tol" 'BEGIN{exit !(t + 0 > 0 && t + 0 < 1)}' || die "--tolerance '$tol' must be in (0, 1)"
+[ -z "$initFrom" ] || { [ -f "$initFrom/rigid.csv" ] && [ -d "$initFrom/case" ]; } ||
+    die "--init-from '$initFrom' is not a finished rigid.sh run (no rigid.csv / case)"
 command -v fluid-app > /dev/null || die "fluid-app not on PATH (build first; scripts/run sets PATH)"
 export WM_PROJECT_DIR="${WM_PROJECT_DIR:-/usr/share/openfoam}"
 export OMPI_MCA_btl_tcp_if_include=lo OMPI_MCA_oob_tcp_if_include=lo
@@ -46,7 +54,10 @@ log() { echo "[rigid.sh $(date +%H:%M:%S)] $*"; }
 
 mkdir -p "$out"
 case="$out/case"
-"$here/tools/fluidCase.sh" "$case" "$mesh" "$np" --flow "$flow" --scheme "$scheme"
+init=()
+[ -z "$initFrom" ] || init=(--init-from "$initFrom/case")
+"$here/tools/fluidCase.sh" "$case" "$mesh" "$np" --flow "$flow" --scheme "$scheme" ${init[@]+"${init[@]}"}
+[ -z "$initFrom" ] || log "initial fields mapped from $initFrom"
 fd() { foamDictionary "$case/$1" -entry "$2" -set "$3" > /dev/null; }
 fd system/fsiDict rigid/maxIterations "$maxIt"
 fd system/fsiDict rigid/forceTolerance "$tol"

@@ -23,6 +23,9 @@
 #                 state at the root junction on this mesh, README "Rigid 3-D solve")
 #   H3D_RUNS      run folders (default $FSI_VERIFY_DIR/runs, not tracked)
 #   H3D_REUSE=1   keep a level whose RUN/rigid/rigid.csv exists instead of redoing it
+#   H3D_SEQUENCE  1 (default): every level starts from the next coarser level's flow
+#                 (blcheck.sh --init-from; grid sequencing, fewer iterations, the same stopping
+#                 test); 0: every level from rest
 set -euo pipefail
 : "${FSI_VERIFY_DIR:?run through scripts/verify hydrofoil-3d-rigid}"
 root=${FSI_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}
@@ -37,7 +40,7 @@ set -- $levels
 [ $# = 3 ] || { echo "error: hydrofoil-3d-rigid: H3D_LEVELS='$levels' must name three presets, coarse to fine" >&2; exit 2; }
 mkdir -p "$runs"
 
-folders=()
+folders=() previous=""
 raw=$FSI_VERIFY_DIR/levels.csv
 : > "$raw.tmp"
 for level in $levels; do
@@ -47,15 +50,17 @@ for level in $levels; do
     else
         echo "hydrofoil-3d-rigid: $level ($(date +%H:%M:%S), load $(cut -d' ' -f1 /proc/loadavg))"
         rm -rf "$r"
+        init=()
+        [ -z "$previous" ] || [ "${H3D_SEQUENCE:-1}" != 1 ] || init=(--init-from "$previous")
         # blcheck exits 1 when y+ > 1 or the motion check fails: recorded in its line, not fatal
         "$root/cases/hydrofoil/blcheck.sh" --out "$r" --preset "$level" --flow "$flow" \
-            --scheme "$scheme" --np "$np" > "$r.log" 2>&1 || true
+            --scheme "$scheme" --np "$np" ${init[@]+"${init[@]}"} > "$r.log" 2>&1 || true
         grep '^blcheck:' "$r.log" > "$r/blcheck.txt" ||
             { tail -5 "$r.log" >&2; echo "error: hydrofoil-3d-rigid: $level failed (see $r.log)" >&2; exit 1; }
     fi
     cat "$r/blcheck.txt" >> "$raw.tmp"
     tail -n 1 "$r/blcheck.txt"
-    folders+=("$r")
+    folders+=("$r") previous=$r
 done
 
 "$FSI_PYTHON" "$root/scripts/history_gci.py" --rigid --model "$flow-$scheme-cgrid" \

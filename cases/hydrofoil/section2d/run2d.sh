@@ -125,19 +125,7 @@ print('%.6g %.6g' % (k, math.sqrt(k) / (0.09 ** 0.25 * l)))" "$tu" "$lscale" 2> 
     log "inlet turbulence: Tu $tu, length scale $lscale m: k $kIn m^2/s^2, omega $omegaIn 1/s"
 fi
 if [ -n "$initFrom" ]; then   # a finished run2d.sh run, checked with the options above
-    # a source case with the solved fields only (mapFields fails on the cell-centre fields);
-    # nearest-cell mapping (v1912's default direct method crashes on these meshes)
-    src="$out/mapSource" srcCase="$(cd "$initFrom/case" && pwd)"
-    srcTime=$(foamListTimes -case "$srcCase" -latestTime 2>/dev/null | tail -1)
-    [ -n "$srcTime" ] || die "--init-from '$initFrom': no solved time folder in its case"
-    rm -rf "$src"; mkdir -p "$src/$srcTime"
-    cp -r "$srcCase/system" "$srcCase/constant" "$src/"
-    for f in U p k omega nut ReThetat gammaInt; do
-        [ ! -f "$srcCase/$srcTime/$f" ] || cp "$srcCase/$srcTime/$f" "$src/$srcTime/"
-    done
-    ( cd "$case" && mapFields "$src" -consistent -sourceTime latestTime -mapMethod mapNearest > log.mapFields 2>&1 ) \
-        || { tail -20 "$case/log.mapFields"; die "mapFields from $initFrom failed (see $case/log.mapFields)"; }
-    rm -rf "$src"
+    "$here/../tools/mapInitialFields.sh" "$case" "$initFrom/case" > /dev/null || die "--init-from '$initFrom': mapping failed"
     log "initial fields mapped from $initFrom"
 fi
 fd system/fsiDict rigid/maxIterations "$maxIt"

@@ -3,12 +3,14 @@
 # The OpenFOAM case of one fluid run, from a mesh folder's fluid case and this case's settings.
 #
 #   cases/hydrofoil/tools/fluidCase.sh DEST MESH_FLUID NP [--flow F] [--scheme S]
+#       [--init-from SOURCE_CASE]
 #
 # Copies MESH_FLUID (a mesh.sh fluid case) to DEST (replaced), gives it this case's solver
 # settings (fluid/system/fsiDict, fvSchemes, fvSolution: a mesh folder may predate them), the
 # fields of every flow model that it lacks (fluid/0.orig), the flow model and scheme
 # (tools/setFlow.sh, options passed on), and decomposes it for NP ranks (hierarchical; NP 1:
-# serial, no processor folders). Used by run.sh for the coupled runs and by scripts/bench-fsi
+# serial, no processor folders). --init-from: the initial fields are SOURCE_CASE's solution
+# mapped onto this mesh (tools/mapInitialFields.sh; grid sequencing). Used by run.sh for the coupled runs and by scripts/bench-fsi
 # for its rigid baseline, so that both solve with the same settings.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -16,6 +18,13 @@ case_dir="$(cd "$here/.." && pwd)"
 die() { echo "error: fluidCase.sh: $*" >&2; exit 2; }
 [ $# -ge 3 ] || die "usage: fluidCase.sh DEST MESH_FLUID NP [--flow F] [--scheme S]"
 dest=$1 meshFluid=$2 np=$3; shift 3
+initFrom="" flowArgs=()
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --init-from) [ $# -ge 2 ] || die "--init-from needs a case folder"; initFrom=$2; shift 2 ;;
+    *) flowArgs+=("$1"); shift ;;
+  esac
+done
 [ -d "$meshFluid/constant/polyMesh" ] || die "$meshFluid is not a fluid case with a mesh"
 [[ "$np" =~ ^[1-9][0-9]*$ ]] || die "NP '$np' must be a positive integer"
 rm -rf "$dest"
@@ -24,7 +33,8 @@ rm -rf "$dest"/processor*
 cp "$case_dir/fluid/system/fsiDict" "$case_dir/fluid/system/fvSchemes" \
    "$case_dir/fluid/system/fvSolution" "$dest/system/"
 for f in "$case_dir/fluid/0.orig"/*; do [ -e "$dest/0/$(basename "$f")" ] || cp "$f" "$dest/0/"; done
-"$here/setFlow.sh" "$dest" "$@" > /dev/null
+"$here/setFlow.sh" "$dest" ${flowArgs[@]+"${flowArgs[@]}"} > /dev/null
+[ -z "$initFrom" ] || "$here/mapInitialFields.sh" "$dest" "$initFrom" > /dev/null
 if [ "$np" -gt 1 ]; then
   foamDictionary "$dest/system/decomposeParDict" -entry numberOfSubdomains -set "$np" >/dev/null
   foamDictionary "$dest/system/decomposeParDict" -entry method -set hierarchical >/dev/null
