@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Checks of tools/forceConvergence.py, tools/mshinfo.py and tools/foilMotion.py on small
-synthetic inputs."""
+synthetic inputs, and of tools/mapInitialFields.sh's input checks."""
 import io
 import os
 import sys
@@ -118,6 +118,31 @@ class FoilMotion(unittest.TestCase):
         np.testing.assert_allclose(np.hypot(*(moved[:2, :2] - [0.3685, 0.0]).T),
                                    np.hypot(*(pts[:2, :2] - [0.3685, 0.0]).T), rtol=1e-12)
         self.assertLess(d[0, 1], 0.0)
+
+
+class MapInitialFields(unittest.TestCase):
+    """tools/mapInitialFields.sh refuses bad folders with one line and exit 2, before mapping
+    (the mapping itself runs in the grid-sequenced studies: run2d.sh / rigid.sh --init-from)."""
+
+    def run_tool(self, *args):
+        import subprocess
+        tool = os.path.join(os.path.dirname(os.path.abspath(__file__)), "mapInitialFields.sh")
+        return subprocess.run(["bash", tool, *args], capture_output=True, text=True)
+
+    def test_bad_folders(self):
+        with tempfile.TemporaryDirectory() as root:
+            dest, src = os.path.join(root, "dest"), os.path.join(root, "src")
+            r = self.run_tool(dest)
+            self.assertEqual(r.returncode, 2)
+            self.assertIn("usage", r.stderr)
+            r = self.run_tool(dest, src)
+            self.assertEqual(r.returncode, 2)
+            self.assertIn("'%s' is not a case with a mesh" % dest, r.stderr)
+            os.makedirs(os.path.join(dest, "constant", "polyMesh"))
+            r = self.run_tool(dest, src)
+            self.assertEqual(r.returncode, 2)
+            self.assertIn("'%s' is not a case" % src, r.stderr)
+            self.assertEqual(len(r.stderr.strip().splitlines()), 1)
 
 
 if __name__ == "__main__":
