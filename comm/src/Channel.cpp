@@ -234,27 +234,19 @@ template <class T>
 std::vector<T> receiveSized(MPI_Comm comm, int source, int tag, MPI_Datatype type, double timeout,
                             const std::string& what, int rank)
 {
-    const auto deadline =
-        Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                           std::chrono::duration<double>(std::min(timeout, kMaxTimeoutSeconds)));
     MPI_Status status;
-    auto pause = std::chrono::microseconds(20);
-    for (long polls = 0;; ++polls)
-    {
-        int arrived = 0;
-        checkMpi(MPI_Iprobe(source, tag, comm, &arrived, &status), what);
-        if (arrived)
-            break;
-        if (Clock::now() >= deadline)
-            throw TimeoutError("fsi::comm: " + what + ": nothing received within " +
-                                   seconds(timeout) + "; the peer exited, crashed or hangs",
-                               false, rank);
-        if (polls > 200)
+    const bool arrived = pollUntil(
+        [&]
         {
-            std::this_thread::sleep_for(pause);
-            pause = std::min(pause * 2, std::chrono::microseconds(2000));
-        }
-    }
+            int flag = 0;
+            checkMpi(MPI_Iprobe(source, tag, comm, &flag, &status), what);
+            return flag != 0;
+        },
+        timeout);
+    if (!arrived)
+        throw TimeoutError("fsi::comm: " + what + ": nothing received within " + seconds(timeout) +
+                               "; the peer exited, crashed or hangs",
+                           false, rank);
     int count = 0;
     checkMpi(MPI_Get_count(&status, type, &count), what);
     std::vector<T> values(static_cast<std::size_t>(count));

@@ -24,8 +24,7 @@ void checkMpi(int code, const std::string& what)
     throw CommError("fsi::comm: " + what + " failed: " + std::string(text, length));
 }
 
-void waitBounded(MPI_Request& request, double timeoutSeconds, const std::string& what,
-                 MPI_Status* status)
+bool pollUntil(const std::function<bool()>& done, double timeoutSeconds)
 {
     using Clock = std::chrono::steady_clock;
     // Saturate: a clock count of nanoseconds overflows near 9.2e9 s.
@@ -36,21 +35,34 @@ void waitBounded(MPI_Request& request, double timeoutSeconds, const std::string&
     auto pause = std::chrono::microseconds(20);
     for (long polls = 0;; ++polls)
     {
-        int done = 0;
-        checkMpi(MPI_Test(&request, &done, status), what);
-        if (done)
-            return;
+        if (done())
+            return true;
         if (Clock::now() >= deadline)
-        {
-            std::ostringstream text;
-            text << "fsi::comm: " << what << " did not complete within " << timeoutSeconds << " s";
-            throw TimeoutError(text.str());
-        }
+            return false;
         if (polls > 200)
         {
             std::this_thread::sleep_for(pause);
             pause = std::min(pause * 2, std::chrono::microseconds(2000));
         }
+    }
+}
+
+void waitBounded(MPI_Request& request, double timeoutSeconds, const std::string& what,
+                 MPI_Status* status)
+{
+    const bool completed = pollUntil(
+        [&]
+        {
+            int flag = 0;
+            checkMpi(MPI_Test(&request, &flag, status), what);
+            return flag != 0;
+        },
+        timeoutSeconds);
+    if (!completed)
+    {
+        std::ostringstream text;
+        text << "fsi::comm: " << what << " did not complete within " << timeoutSeconds << " s";
+        throw TimeoutError(text.str());
     }
 }
 

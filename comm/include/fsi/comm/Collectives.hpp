@@ -7,6 +7,7 @@
 #include <mpi.h>
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,11 @@ std::vector<double> scatterFromRoot(MPI_Comm comm, const std::vector<double>& ro
 
 // After the call every rank holds the root's values (size included).
 void broadcastFromRoot(MPI_Comm comm, std::vector<double>& values, double timeoutSeconds);
+
+// Calls `done` until it returns true (returns true) or timeoutSeconds pass (returns false):
+// spins for about 200 calls, then sleeps between calls with a pause doubling up to 2 ms.
+// Every bounded wait on MPI progress polls through this.
+bool pollUntil(const std::function<bool()>& done, double timeoutSeconds);
 
 // Bounded wait for one request: polls MPI_Test with short sleeps until done or until
 // timeoutSeconds pass; then throws TimeoutError("<what> did not complete within N s").
