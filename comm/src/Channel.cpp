@@ -99,6 +99,43 @@ std::int64_t statusOf(const std::exception& e)
     return kOther;
 }
 
+// Work done on the local root only, as every local rank learns it. On the root `work` runs and
+// returns the bytes the other ranks need; an exception becomes its status word and its text (a
+// PeerAbortError: the peer's own reason). Then every rank holds the root's status and bytes
+// (shareFromRoot, bounded; a failure of the sharing itself propagates).
+struct RootOutcome
+{
+    std::int64_t status = kOk;
+    std::vector<char> bytes;
+};
+
+RootOutcome runOnRootAndShare(MPI_Comm comm, int size, bool root,
+                              const std::function<std::vector<char>()>& work, double firstWait,
+                              double timeout, const std::string& what)
+{
+    RootOutcome outcome;
+    if (root)
+    {
+        try
+        {
+            outcome.bytes = work();
+        }
+        catch (const PeerAbortError& e)
+        {
+            outcome.status = kPeerAbort;
+            outcome.bytes.assign(e.reason().begin(), e.reason().end());
+        }
+        catch (const std::exception& e)
+        {
+            outcome.status = statusOf(e);
+            const std::string text = e.what();
+            outcome.bytes.assign(text.begin(), text.end());
+        }
+    }
+    shareFromRoot(comm, size, outcome.status, outcome.bytes, firstWait, timeout, what);
+    return outcome;
+}
+
 std::string readFile(const std::string& path, bool& exists)
 {
     std::ifstream in(path, std::ios::binary);
@@ -411,16 +448,14 @@ void Channel::connectPort()
     MPI_Comm_size(localComm_, &localSize_);
     const double timeout = options_.timeoutSeconds;
     const std::string& path = options_.portFile;
-    std::int64_t status = kOk;
-    std::vector<char> bytes;
     char portName[MPI_MAX_PORT_NAME + 1] = {};
 
     if (self_.role == Role::Solid)
     {
         // Server: open a port and publish it.
-        if (isRoot())
-        {
-            try
+        const RootOutcome setUp = runOnRootAndShare(
+            localComm_, localSize_, isRoot(),
+            [&]
             {
                 checkMpi(MPI_Open_port(MPI_INFO_NULL, portName), "MPI_Open_port");
                 PortFileRecord record;
@@ -431,17 +466,12 @@ void Channel::connectPort()
                                             std::chrono::system_clock::now().time_since_epoch())
                                             .count();
                 writePortFileAtomically(path, record);
-            }
-            catch (const std::exception& e)
-            {
-                status = statusOf(e);
-                const std::string text = e.what();
-                bytes.assign(text.begin(), text.end());
-            }
-        }
-        shareFromRoot(localComm_, localSize_, status, bytes, timeout, timeout, "port set-up");
-        if (status != kOk)
-            throwStatus(status, std::string(bytes.begin(), bytes.end()), localRank_, peerName());
+                return std::vector<char>();
+            },
+            timeout, timeout, "port set-up");
+        if (setUp.status != kOk)
+            throwStatus(setUp.status, std::string(setUp.bytes.begin(), setUp.bytes.end()),
+                        localRank_, peerName());
         {
             detail::Watchdog guard(
                 timeout,
@@ -465,9 +495,9 @@ void Channel::connectPort()
     else
     {
         // Client: wait for the file, check it, connect.
-        if (isRoot())
-        {
-            try
+        const RootOutcome found = runOnRootAndShare(
+            localComm_, localSize_, isRoot(),
+            [&]
             {
                 const auto start = Clock::now();
                 const auto limit = std::chrono::duration<double>(timeout);
@@ -511,18 +541,12 @@ void Channel::connectPort()
                     }
                     std::this_thread::sleep_for(std::chrono::milliseconds(50));
                 }
-            }
-            catch (const std::exception& e)
-            {
-                status = statusOf(e);
-                const std::string text = e.what();
-                bytes.assign(text.begin(), text.end());
-            }
-        }
-        shareFromRoot(localComm_, localSize_, status, bytes, nonRootBound(timeout), timeout,
-                      "port file");
-        if (status != kOk)
-            throwStatus(status, std::string(bytes.begin(), bytes.end()), localRank_, peerName());
+                return std::vector<char>();
+            },
+            nonRootBound(timeout), timeout, "port file");
+        if (found.status != kOk)
+            throwStatus(found.status, std::string(found.bytes.begin(), found.bytes.end()),
+                        localRank_, peerName());
         {
             detail::Watchdog guard(
                 timeout,
@@ -545,16 +569,14 @@ void Channel::connectPort()
 void Channel::handshake(const PeerExpectation& expectation)
 {
     const double timeout = options_.timeoutSeconds;
-    std::int64_t status = kOk;
-    std::vector<char> bytes;
-    if (isRoot())
-    {
-        int remoteSize = 0;
-        MPI_Comm_remote_size(interComm_, &remoteSize);
-        std::string ourReason;
-        std::string peerReason;
-        try
+    const RootOutcome shaken = runOnRootAndShare(
+        localComm_, localSize_, isRoot(),
+        [&]
         {
+            int remoteSize = 0;
+            MPI_Comm_remote_size(interComm_, &remoteSize);
+            std::string ourReason;
+            std::string peerReason;
             Message hello;
             hello.kind = MessageKind::Hello;
             hello.integers = {static_cast<std::int64_t>(self_.role), localSize_};
@@ -638,24 +660,20 @@ void Channel::handshake(const PeerExpectation& expectation)
             if (!peerReason.empty())
                 throw ProtocolError("fsi::comm: handshake failed: " + peerName() + " rejected " +
                                     self_.program + ": " + peerReason);
+            std::vector<char> bytes;
             put64(bytes, static_cast<std::int64_t>(peer_.role));
             put64(bytes, peer_.ranks);
             put64(bytes, static_cast<std::int64_t>(peer_.interfaceSizes.size()));
             for (const auto size : peer_.interfaceSizes)
                 put64(bytes, size);
             bytes.insert(bytes.end(), peer_.program.begin(), peer_.program.end());
-        }
-        catch (const std::exception& e)
-        {
-            status = statusOf(e);
-            const std::string text = e.what();
-            bytes.assign(text.begin(), text.end());
-        }
-    }
-    shareFromRoot(localComm_, localSize_, status, bytes, nonRootBound(timeout), timeout,
-                  "handshake");
-    if (status != kOk)
-        throwStatus(status, std::string(bytes.begin(), bytes.end()), localRank_, peerName());
+            return bytes;
+        },
+        nonRootBound(timeout), timeout, "handshake");
+    if (shaken.status != kOk)
+        throwStatus(shaken.status, std::string(shaken.bytes.begin(), shaken.bytes.end()),
+                    localRank_, peerName());
+    const std::vector<char>& bytes = shaken.bytes;
     if (!isRoot())
     {
         std::size_t at = 0;
@@ -711,12 +729,10 @@ Message Channel::receiveOnRoot(MessageKind expected, bool anyKind, double timeou
 {
     if (closed_ || !healthy_)
         throw CommError("fsi::comm: receive on a closed or failed channel", false, localRank_);
-    std::int64_t status = kOk;
-    std::vector<char> bytes;
     Message message;
-    if (isRoot())
-    {
-        try
+    const std::vector<char> bytes = shareRootOutcome(
+        "receive", timeout,
+        [&]
         {
             const std::string what = "waiting for " +
                                      (anyKind ? std::string("a message") : toString(expected)) +
@@ -736,45 +752,14 @@ Message Channel::receiveOnRoot(MessageKind expected, bool anyKind, double timeou
             }
             Message small = message;
             small.values.clear();
-            const EncodedHeader words = encodeHeader(headerOf(small));
-            for (const auto w : words)
-                put64(bytes, w);
-            put64(bytes, message.valueCount);
+            std::vector<char> header;
+            for (const auto w : encodeHeader(headerOf(small)))
+                put64(header, w);
+            put64(header, message.valueCount);
             const std::vector<char> payload = encodePayload(small);
-            bytes.insert(bytes.end(), payload.begin(), payload.end());
-        }
-        catch (const PeerAbortError& e)
-        {
-            status = kPeerAbort;
-            bytes.assign(e.reason().begin(), e.reason().end());
-        }
-        catch (const std::exception& e)
-        {
-            status = statusOf(e);
-            const std::string text = e.what();
-            bytes.assign(text.begin(), text.end());
-        }
-    }
-    try
-    {
-        shareFromRoot(localComm_, localSize_, status, bytes, nonRootBound(timeout), timeout,
-                      "receive");
-    }
-    catch (...)
-    {
-        fail();
-        throw;
-    }
-    if (status != kOk)
-    {
-        // After a protocol error the message stream is still in step: the channel stays usable
-        // for sending Abort. A timeout or an MPI error leaves requests pending: unusable.
-        if (status == kPeerAbort)
-            peerKnowsWeStop_ = true;
-        else if (status != kProtocol)
-            fail();
-        throwStatus(status, std::string(bytes.begin(), bytes.end()), localRank_, peerName());
-    }
+            header.insert(header.end(), payload.begin(), payload.end());
+            return header;
+        });
     if (!isRoot())
     {
         std::size_t at = 0;
@@ -843,37 +828,40 @@ void Channel::requireOpen(const char* operation) const
 
 void Channel::onRootShared(const std::string& what, const std::function<void()>& work)
 {
-    std::int64_t status = kOk;
-    std::vector<char> bytes;
-    if (isRoot())
-    {
-        try
-        {
-            work();
-        }
-        catch (const std::exception& e)
-        {
-            status = statusOf(e);
-            const std::string text = e.what();
-            bytes.assign(text.begin(), text.end());
-        }
-    }
+    shareRootOutcome(what, options_.timeoutSeconds,
+                     [&]
+                     {
+                         work();
+                         return std::vector<char>();
+                     });
+}
+
+std::vector<char> Channel::shareRootOutcome(const std::string& what, double timeout,
+                                            const std::function<std::vector<char>()>& work)
+{
+    RootOutcome outcome;
     try
     {
-        shareFromRoot(localComm_, localSize_, status, bytes, nonRootBound(options_.timeoutSeconds),
-                      options_.timeoutSeconds, what);
+        outcome = runOnRootAndShare(localComm_, localSize_, isRoot(), work, nonRootBound(timeout),
+                                    timeout, what);
     }
     catch (...)
     {
         fail();
         throw;
     }
-    if (status != kOk)
+    if (outcome.status != kOk)
     {
-        if (status != kProtocol) // a timeout or an MPI error leaves requests pending
+        // After a protocol error the message stream is still in step: the channel stays usable
+        // for sending Abort. A timeout or an MPI error leaves requests pending: unusable.
+        if (outcome.status == kPeerAbort)
+            peerKnowsWeStop_ = true;
+        else if (outcome.status != kProtocol)
             fail();
-        throwStatus(status, std::string(bytes.begin(), bytes.end()), localRank_, peerName());
+        throwStatus(outcome.status, std::string(outcome.bytes.begin(), outcome.bytes.end()),
+                    localRank_, peerName());
     }
+    return std::move(outcome.bytes);
 }
 
 void Channel::sendRowMaps(const std::vector<std::vector<std::int64_t>>& rowsOfEachArray)

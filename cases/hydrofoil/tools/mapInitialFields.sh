@@ -7,7 +7,8 @@
 #
 # Maps the solved fields (U, p and the turbulence fields k, omega, nut, ReThetat, gammaInt that
 # SOURCE_CASE's latest time folder has) onto DEST_CASE's start time (an undecomposed case: run
-# before decomposePar) with OpenFOAM's mapFields -consistent (same patch names). Nearest-cell
+# before decomposePar) with OpenFOAM's mapFields -consistent (same patch names); the fields the
+# source lacks (pointDisplacement, other models' fields) keep their initial values. Nearest-cell
 # mapping: v1912's default direct method crashes on these meshes. The source's latest time must
 # be reconstructed (rigid.sh and run2d.sh do so). Writes DEST_CASE/log.mapFields; exit 2 with a
 # one-line error naming the folder when there is nothing to map or mapFields fails.
@@ -31,4 +32,11 @@ for f in U p k omega nut ReThetat gammaInt; do
 done
 ( cd "$dest" && mapFields "$src" -consistent -sourceTime latestTime -mapMethod mapNearest \
     > log.mapFields 2>&1 ) || { tail -20 "$dest/log.mapFields" >&2; die "mapFields from '$srcCase' failed (see $dest/log.mapFields)"; }
+# mapFields renames the destination's fields that the source lacks (e.g. pointDisplacement, the
+# transition fields of an SST source) to NAME.unmapped: they keep their initial values
+startTime=$(foamDictionary "$dest/system/controlDict" -entry startTime -value 2>/dev/null || echo 0)
+for f in "$dest/$startTime"/*.unmapped; do
+    [ -e "$f" ] || continue
+    mv "$f" "${f%.unmapped}"
+done
 echo "mapInitialFields.sh: $dest: fields of $srcCase time $srcTime mapped (nearest cell)"

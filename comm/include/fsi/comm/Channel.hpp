@@ -183,6 +183,10 @@ private:
     // Runs work on the root; the outcome (ok or the error's kind and text) reaches every local
     // rank, which then all return or all throw. Bounded.
     void onRootShared(const std::string& what, const std::function<void()>& work);
+    // The same for work that returns bytes the other ranks need: every rank returns the root's
+    // bytes. An error fails the channel unless it is a protocol error or the peer's Abort.
+    std::vector<char> shareRootOutcome(const std::string& what, double timeout,
+                                       const std::function<std::vector<char>()>& work);
     void requireOpen(const char* operation) const;
 
     LaunchOptions options_;
