@@ -7,20 +7,21 @@
 #
 #   cases/hydrofoil/blcheck.sh --out RUNDIR [--preset coarse|medium|fine] [--flow turbulent]
 #       [--scheme upwind] [--np 2] [--max-iterations 3000] [--init-from BLCHECK_RUN]
+#       [--algorithm simple]
 #
 #   blcheck: preset=P cells=N motion=OK motion_max_nonorth_deg=X iterations=N converged=0|1
 #     yplus_max=X yplus_mean=X yplus_le1_pct=X tip_yplus_max=X lift_N=X drag_N=X
 #     root_moment_z_Nm=X cpu_s=X wall_s=X
 #
 # --init-from: the rigid solve starts from another blcheck.sh run's flow (e.g. the next coarser
-# preset; rigid.sh --init-from BLCHECK_RUN/rigid).
+# preset; rigid.sh --init-from BLCHECK_RUN/rigid). --algorithm simple: classic SIMPLE (rigid.sh).
 # Exit 1 when the motion check fails or the first-cell y+ exceeds 1 anywhere on the foil (the
 # mesh's promise); the line is printed either way. Cost: coarse about 9 min on 2 cores (mesh
 # 20 s, motion 30 s, rigid solve 8 min), medium ~25 min, fine more than an hour.
 # Needs what mesh.sh and rigid.sh need (OpenFOAM v1912, gmsh, the build's bin/ on PATH).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-out="" preset=coarse flow=turbulent scheme=upwind np=2 maxIt=3000 initFrom=""
+out="" preset=coarse flow=turbulent scheme=upwind np=2 maxIt=3000 initFrom="" algorithm=""
 die() { echo "error: blcheck.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
     case "$1" in
@@ -31,7 +32,8 @@ while [ $# -gt 0 ]; do
         --np) np="$2"; shift 2 ;;
         --max-iterations) maxIt="$2"; shift 2 ;;
         --init-from) initFrom="$2"; shift 2 ;;
-        -h|--help) sed -n '3,20p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        --algorithm) algorithm="$2"; shift 2 ;;
+        -h|--help) sed -n '3,21p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) die "unknown option '$1' (see --help)" ;;
     esac
 done
@@ -54,6 +56,7 @@ nonorth=$(awk '/non-orthogonality Max/ {print $4; exit}' "$out/motion/log.checkM
 log "rigid solve ($flow, $scheme)"
 "$here/rigid.sh" --mesh "$out/mesh/fluid" --out "$out/rigid" --flow "$flow" --scheme "$scheme" \
     --np "$np" --max-iterations "$maxIt" ${initFrom:+--init-from "$(cd "$initFrom" && pwd)/rigid"} \
+    ${algorithm:+--algorithm "$algorithm"} \
     > "$out/log.rigid" 2>&1 ||
     die "rigid.sh failed (see $out/log.rigid)"
 /usr/bin/python3 - "$out/rigid/rigid.csv" "$preset" "$motion" "${nonorth:-nan}" <<'EOP'

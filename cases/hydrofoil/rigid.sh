@@ -5,7 +5,7 @@
 #
 #   cases/hydrofoil/rigid.sh --mesh DIR/fluid --out RUNDIR [--flow laminar|transition|turbulent]
 #       [--scheme upwind|linearUpwind] [--np 2] [--tolerance 1e-5] [--max-iterations 3000]
-#       [--init-from RUN]
+#       [--init-from RUN] [--algorithm simple]
 #
 #   --tolerance T        stop when the estimated force error is <= T |F|, held 100 iterations
 #                        (fsiDict rigid/estimateForceError; the 2-D section mode's criterion)
@@ -14,6 +14,7 @@
 #                        same domain, e.g. the next coarser preset; same flow model), mapped
 #                        nearest-cell (tools/mapInitialFields.sh): grid sequencing, fewer
 #                        iterations; the stopping test is unchanged
+#   --algorithm simple   classic SIMPLE instead of the case's SIMPLEC (tools/setFlow.sh)
 #
 # Writes RUNDIR/case (the OpenFOAM case, tools/fluidCase.sh) and RUNDIR/rigid.csv, one row:
 # cells, flow, scheme, iterations, converged, lift = -F_y, drag = F_x (N), root pitching moment
@@ -23,7 +24,7 @@
 # fluid-app must be on PATH (scripts/run and scripts/verify put the build's bin/ first).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-mesh="" out="" flow=laminar scheme=upwind np=2 tol=1e-5 maxIt=3000 initFrom=""
+mesh="" out="" flow=laminar scheme=upwind np=2 tol=1e-5 maxIt=3000 initFrom="" algorithm=""
 die() { echo "error: rigid.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
     case "$1" in
@@ -35,7 +36,8 @@ while [ $# -gt 0 ]; do
         --tolerance) tol="$2"; shift 2 ;;
         --max-iterations) maxIt="$2"; shift 2 ;;
         --init-from) initFrom="$2"; shift 2 ;;
-        -h|--help) sed -n '3,22p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        --algorithm) algorithm="$2"; shift 2 ;;
+        -h|--help) sed -n '3,23p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) die "unknown option '$1' (see --help)" ;;
     esac
 done
@@ -56,6 +58,7 @@ mkdir -p "$out"
 case="$out/case"
 init=()
 [ -z "$initFrom" ] || init=(--init-from "$initFrom/case")
+[ -z "$algorithm" ] || init+=(--algorithm "$algorithm")
 "$here/tools/fluidCase.sh" "$case" "$mesh" "$np" --flow "$flow" --scheme "$scheme" ${init[@]+"${init[@]}"}
 [ -z "$initFrom" ] || log "initial fields mapped from $initFrom"
 fd() { foamDictionary "$case/$1" -entry "$2" -set "$3" > /dev/null; }
@@ -77,7 +80,7 @@ fd system/controlDict functions/cellCentres \
 
 par=()
 [ "$np" -gt 1 ] && par=(-parallel)
-log "fluid-app -rigid on $np rank(s): flow $flow, scheme $scheme, force error <= $tol |F|, cap $maxIt"
+log "fluid-app -rigid on $np rank(s): flow $flow, scheme $scheme${algorithm:+, algorithm $algorithm}, force error <= $tol |F|, cap $maxIt"
 t0=$(date +%s.%N)
 ( cd "$case" && /usr/bin/time -f "%U %S" -o time.txt \
     mpirun --oversubscribe -np "$np" fluid-app -rigid "${par[@]}" > log.fluid-app 2>&1 ) ||

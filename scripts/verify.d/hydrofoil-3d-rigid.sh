@@ -21,6 +21,8 @@
 #   H3D_FLOW      flow model (default turbulent: k-omega SST; see the README's flow models)
 #   H3D_SCHEME    convection scheme (default upwind: the second-order schemes have no steady
 #                 state at the root junction on this mesh, README "Rigid 3-D solve")
+#   H3D_ALGORITHM simple: classic SIMPLE (blcheck.sh --algorithm; default: the case's SIMPLEC,
+#                 which oscillates on medium, README "Rigid 3-D solve")
 #   H3D_RUNS      run folders (default $FSI_VERIFY_DIR/runs, not tracked)
 #   H3D_REUSE=1   keep a level whose RUN/rigid/rigid.csv exists instead of redoing it
 #   H3D_SEQUENCE  1 (default): every level starts from the next coarser level's flow
@@ -44,7 +46,7 @@ folders=() previous=""
 raw=$FSI_VERIFY_DIR/levels.csv
 : > "$raw.tmp"
 for level in $levels; do
-    r=$runs/$flow-$scheme-$level
+    r=$runs/$flow-$scheme${H3D_ALGORITHM:+-$H3D_ALGORITHM}-$level
     if [ "$reuse" = 1 ] && [ -f "$r/rigid/rigid.csv" ] && [ -f "$r/blcheck.txt" ]; then
         echo "hydrofoil-3d-rigid: reusing $r"
     else
@@ -52,6 +54,7 @@ for level in $levels; do
         rm -rf "$r"
         init=()
         [ -z "$previous" ] || [ "${H3D_SEQUENCE:-1}" != 1 ] || init=(--init-from "$previous")
+        [ -z "${H3D_ALGORITHM:-}" ] || init+=(--algorithm "$H3D_ALGORITHM")
         # blcheck exits 1 when y+ > 1 or the motion check fails: recorded in its line, not fatal
         "$root/cases/hydrofoil/blcheck.sh" --out "$r" --preset "$level" --flow "$flow" \
             --scheme "$scheme" --np "$np" ${init[@]+"${init[@]}"} > "$r.log" 2>&1 || true
@@ -63,7 +66,7 @@ for level in $levels; do
     folders+=("$r") previous=$r
 done
 
-"$FSI_PYTHON" "$root/scripts/history_gci.py" --rigid --model "$flow-$scheme-cgrid" \
+"$FSI_PYTHON" "$root/scripts/history_gci.py" --rigid --model "$flow-$scheme${H3D_ALGORITHM:+-$H3D_ALGORITHM}-cgrid" \
     --out "$FSI_VERIFY_DIR/gci.csv" --table "${folders[@]}"
 
 "$FSI_PYTHON" - "$raw.tmp" "$raw" "$FSI_VERIFY_DIR" "$np" "${folders[@]}" <<'PY'

@@ -3,7 +3,7 @@
 # Select the flow model and the convection scheme of an OpenFOAM copy of the hydrofoil case.
 #
 #   cases/hydrofoil/tools/setFlow.sh CASE [--flow laminar|transition|turbulent]
-#                                         [--scheme upwind|linearUpwind]
+#                                         [--scheme upwind|linearUpwind] [--algorithm simple]
 #
 #   --flow laminar      the paper's model (default)
 #          transition   Langtry-Menter kOmegaSSTLM (needs first-cell y+ <= 1)
@@ -11,6 +11,11 @@
 #   --scheme upwind        first order, bounded (default)
 #            linearUpwind  second order, bounded, cell-limited gradients (U and the
 #                          turbulence fields)
+#   --algorithm simple     classic SIMPLE (consistent no; relaxation p 0.3, U 0.7, turbulence
+#                          0.7) instead of the case's SIMPLEC (consistent yes; p 1, U 0.9,
+#                          turbulence 0.8; left as it is when the option is not given). SIMPLEC
+#                          is the faster one where it is stable; on the medium cgrid mesh it is
+#                          not (README "Rigid 3-D solve": a growing two-iteration oscillation)
 #
 # Copies fluid/flow/<flow> to CASE/constant/turbulenceProperties and sets divSchemes of
 # CASE/system/fvSchemes. The fields of every model are in fluid/0.orig (k, omega, nut,
@@ -20,15 +25,17 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 die() { echo "error: setFlow.sh: $*" >&2; exit 2; }
 [ $# -ge 1 ] || die "usage: setFlow.sh CASE [--flow laminar|transition|turbulent] [--scheme upwind|linearUpwind]"
 case="$1"; shift
-flow=laminar scheme=upwind
+flow=laminar scheme=upwind algorithm=""
 while [ $# -gt 0 ]; do
     case "$1" in
         --flow) flow="$2"; shift 2 ;;
         --scheme) scheme="$2"; shift 2 ;;
-        *) die "unknown option '$1' (use --flow, --scheme)" ;;
+        --algorithm) algorithm="$2"; shift 2 ;;
+        *) die "unknown option '$1' (use --flow, --scheme, --algorithm)" ;;
     esac
 done
 [ -f "$case/system/fvSchemes" ] || die "'$case' is not an OpenFOAM case (no system/fvSchemes)"
+case "$algorithm" in ""|simple) ;; *) die "--algorithm '$algorithm' unknown; use simple (or leave it out for the case's SIMPLEC)" ;; esac
 [ -f "$here/fluid/flow/$flow" ] || die "--flow '$flow' unknown; use laminar, transition or turbulent"
 export WM_PROJECT_DIR="${WM_PROJECT_DIR:-/usr/share/openfoam}"
 cp "$here/fluid/flow/$flow" "$case/constant/turbulenceProperties"
@@ -45,4 +52,11 @@ case "$scheme" in
         done ;;
     *) die "--scheme '$scheme' unknown; use upwind or linearUpwind" ;;
 esac
-echo "flow=$flow scheme=$scheme"
+if [ "$algorithm" = simple ]; then
+    sol() { foamDictionary "$case/system/fvSolution" -entry "$1" -set "$2" > /dev/null; }
+    sol SIMPLE/consistent no
+    sol relaxationFactors/fields/p 0.3
+    sol relaxationFactors/equations/U 0.7
+    sol 'relaxationFactors/equations/"(k|omega|ReThetat|gammaInt)"' 0.7
+fi
+echo "flow=$flow scheme=$scheme${algorithm:+ algorithm=$algorithm}"
