@@ -3,20 +3,21 @@
 # The OpenFOAM case of one fluid run, from a mesh folder's fluid case and this case's settings.
 #
 #   cases/hydrofoil/tools/fluidCase.sh DEST MESH_FLUID NP [--flow F] [--scheme S]
-#       [--init-from SOURCE_CASE]
+#       [--algorithm simple] [--init-from SOURCE_CASE]
 #
 # Copies MESH_FLUID (a mesh.sh fluid case) to DEST (replaced), gives it this case's solver
 # settings (fluid/system/fsiDict, fvSchemes, fvSolution: a mesh folder may predate them), the
 # fields of every flow model that it lacks (fluid/0.orig), the flow model and scheme
 # (tools/setFlow.sh, options passed on), and decomposes it for NP ranks (hierarchical; NP 1:
 # serial, no processor folders). --init-from: the initial fields are SOURCE_CASE's solution
-# mapped onto this mesh (tools/mapInitialFields.sh; grid sequencing). Used by run.sh for the coupled runs and by scripts/bench-fsi
-# for its rigid baseline, so that both solve with the same settings.
+# mapped onto this mesh (tools/mapInitialFields.sh; grid sequencing). Used by run.sh for the
+# coupled runs and by scripts/bench-fsi for its rigid baseline, so that both solve with the
+# same settings; options other than --init-from go to tools/setFlow.sh.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 case_dir="$(cd "$here/.." && pwd)"
 die() { echo "error: fluidCase.sh: $*" >&2; exit 2; }
-[ $# -ge 3 ] || die "usage: fluidCase.sh DEST MESH_FLUID NP [--flow F] [--scheme S]"
+[ $# -ge 3 ] || die "usage: fluidCase.sh DEST MESH_FLUID NP [--flow F] [--scheme S] [--algorithm simple] [--init-from SOURCE_CASE]"
 dest=$1 meshFluid=$2 np=$3; shift 3
 initFrom="" flowArgs=()
 while [ $# -gt 0 ]; do
