@@ -136,6 +136,14 @@ RootOutcome runOnRootAndShare(MPI_Comm comm, int size, bool root,
     return outcome;
 }
 
+// Every rank throws the root's error alike (its kind and text), or returns.
+void throwIfFailed(const RootOutcome& outcome, int rank, const std::string& peerName)
+{
+    if (outcome.status != kOk)
+        throwStatus(outcome.status, std::string(outcome.bytes.begin(), outcome.bytes.end()), rank,
+                    peerName);
+}
+
 std::string readFile(const std::string& path, bool& exists)
 {
     std::ifstream in(path, std::ios::binary);
@@ -469,9 +477,7 @@ void Channel::connectPort()
                 return std::vector<char>();
             },
             timeout, timeout, "port set-up");
-        if (setUp.status != kOk)
-            throwStatus(setUp.status, std::string(setUp.bytes.begin(), setUp.bytes.end()),
-                        localRank_, peerName());
+        throwIfFailed(setUp, localRank_, peerName());
         {
             detail::Watchdog guard(
                 timeout,
@@ -544,9 +550,7 @@ void Channel::connectPort()
                 return std::vector<char>();
             },
             nonRootBound(timeout), timeout, "port file");
-        if (found.status != kOk)
-            throwStatus(found.status, std::string(found.bytes.begin(), found.bytes.end()),
-                        localRank_, peerName());
+        throwIfFailed(found, localRank_, peerName());
         {
             detail::Watchdog guard(
                 timeout,
@@ -670,9 +674,7 @@ void Channel::handshake(const PeerExpectation& expectation)
             return bytes;
         },
         nonRootBound(timeout), timeout, "handshake");
-    if (shaken.status != kOk)
-        throwStatus(shaken.status, std::string(shaken.bytes.begin(), shaken.bytes.end()),
-                    localRank_, peerName());
+    throwIfFailed(shaken, localRank_, peerName());
     const std::vector<char>& bytes = shaken.bytes;
     if (!isRoot())
     {
@@ -858,8 +860,7 @@ std::vector<char> Channel::shareRootOutcome(const std::string& what, double time
             peerKnowsWeStop_ = true;
         else if (outcome.status != kProtocol)
             fail();
-        throwStatus(outcome.status, std::string(outcome.bytes.begin(), outcome.bytes.end()),
-                    localRank_, peerName());
+        throwIfFailed(outcome, localRank_, peerName());
     }
     return std::move(outcome.bytes);
 }
