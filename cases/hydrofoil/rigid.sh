@@ -47,6 +47,7 @@ done
 [[ "$np" =~ ^[1-9][0-9]*$ ]] || die "--np '$np' must be a positive integer"
 [[ "$maxIt" =~ ^[1-9][0-9]*$ ]] || die "--max-iterations '$maxIt' must be a positive integer"
 awk -v t="$tol" 'BEGIN{exit !(t + 0 > 0 && t + 0 < 1)}' || die "--tolerance '$tol' must be in (0, 1)"
+case "$algorithm" in ""|simple) ;; *) die "--algorithm '$algorithm' unknown; use simple (or leave it out for the case's SIMPLEC)" ;; esac
 [ -z "$initFrom" ] || { [ -f "$initFrom/rigid.csv" ] && [ -d "$initFrom/case" ]; } ||
     die "--init-from '$initFrom' is not a finished rigid.sh run (no rigid.csv / case)"
 command -v fluid-app > /dev/null || die "fluid-app not on PATH (build first; scripts/run sets PATH)"
@@ -56,10 +57,10 @@ log() { echo "[rigid.sh $(date +%H:%M:%S)] $*"; }
 
 mkdir -p "$out"
 case="$out/case"
-init=()
-[ -z "$initFrom" ] || init=(--init-from "$initFrom/case")
-[ -z "$algorithm" ] || init+=(--algorithm "$algorithm")
-"$here/tools/fluidCase.sh" "$case" "$mesh" "$np" --flow "$flow" --scheme "$scheme" ${init[@]+"${init[@]}"}
+caseArgs=()
+[ -z "$initFrom" ] || caseArgs=(--init-from "$initFrom/case")
+[ -z "$algorithm" ] || caseArgs+=(--algorithm "$algorithm")
+"$here/tools/fluidCase.sh" "$case" "$mesh" "$np" --flow "$flow" --scheme "$scheme" ${caseArgs[@]+"${caseArgs[@]}"}
 [ -z "$initFrom" ] || log "initial fields mapped from $initFrom"
 fd() { foamDictionary "$case/$1" -entry "$2" -set "$3" > /dev/null; }
 fd system/fsiDict rigid/maxIterations "$maxIt"
