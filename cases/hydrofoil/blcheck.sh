@@ -39,7 +39,7 @@ while [ $# -gt 0 ]; do
 done
 [ -n "$out" ] || die "--out RUNDIR is required (a run folder outside git)"
 case "$preset" in coarse|medium|fine) ;; *) die "--preset must be coarse, medium or fine" ;; esac
-case "$algorithm" in ""|simple) ;; *) die "--algorithm '$algorithm' unknown; use simple (or leave it out for the case's SIMPLEC)" ;; esac
+"$here/tools/setFlow.sh" --check-only --flow "$flow" --scheme "$scheme" ${algorithm:+--algorithm "$algorithm"}
 [ -z "$initFrom" ] || [ -f "$initFrom/rigid/rigid.csv" ] ||
     die "--init-from '$initFrom' is not a finished blcheck.sh run (no rigid/rigid.csv)"
 command -v fluid-app > /dev/null || die "fluid-app is not on PATH (put the build's bin/ first)"

@@ -20,11 +20,13 @@
 # Copies fluid/flow/<flow> to CASE/constant/turbulenceProperties and sets divSchemes of
 # CASE/system/fvSchemes. The fields of every model are in fluid/0.orig (k, omega, nut,
 # ReThetat, gammaInt are read only by the RAS models). Prints "flow=F scheme=S".
+# `setFlow.sh --check-only [options]` only validates the options (exit 2 with a one-line error):
+# the scripts that pass them on call it before they write anything.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 die() { echo "error: setFlow.sh: $*" >&2; exit 2; }
 [ $# -ge 1 ] || die "usage: setFlow.sh CASE [--flow laminar|transition|turbulent] [--scheme upwind|linearUpwind]"
-case="$1"; shift
+case="$1"; shift   # --check-only: no case
 flow=laminar scheme=upwind algorithm=""
 while [ $# -gt 0 ]; do
     case "$1" in
@@ -34,9 +36,11 @@ while [ $# -gt 0 ]; do
         *) die "unknown option '$1' (use --flow, --scheme, --algorithm)" ;;
     esac
 done
-[ -f "$case/system/fvSchemes" ] || die "'$case' is not an OpenFOAM case (no system/fvSchemes)"
 case "$algorithm" in ""|simple) ;; *) die "--algorithm '$algorithm' unknown; use simple (or leave it out for the case's SIMPLEC)" ;; esac
 [ -f "$here/fluid/flow/$flow" ] || die "--flow '$flow' unknown; use laminar, transition or turbulent"
+case "$scheme" in upwind|linearUpwind) ;; *) die "--scheme '$scheme' unknown; use upwind or linearUpwind" ;; esac
+[ "$case" != --check-only ] || exit 0
+[ -f "$case/system/fvSchemes" ] || die "'$case' is not an OpenFOAM case (no system/fvSchemes)"
 export WM_PROJECT_DIR="${WM_PROJECT_DIR:-/usr/share/openfoam}"
 cp "$here/fluid/flow/$flow" "$case/constant/turbulenceProperties"
 set_() { foamDictionary "$case/system/fvSchemes" -entry "$1" -set "$2" > /dev/null; }
@@ -50,7 +54,6 @@ case "$scheme" in
         for f in k omega ReThetat gammaInt; do
             set_ "divSchemes/div(phi,$f)" "bounded Gauss linearUpwind grad($f)"
         done ;;
-    *) die "--scheme '$scheme' unknown; use upwind or linearUpwind" ;;
 esac
 if [ "$algorithm" = simple ]; then
     sol() { foamDictionary "$case/system/fvSolution" -entry "$1" -set "$2" > /dev/null; }
