@@ -7,21 +7,22 @@
 #
 #   cases/hydrofoil/blcheck.sh --out RUNDIR [--preset coarse|medium|fine] [--flow turbulent]
 #       [--scheme upwind] [--np 2] [--max-iterations 3000] [--init-from BLCHECK_RUN]
-#       [--algorithm simple]
+#       [--algorithm simple] [--band-tolerance B]
 #
 #   blcheck: preset=P cells=N motion=OK motion_max_nonorth_deg=X iterations=N converged=0|1
-#     yplus_max=X yplus_mean=X yplus_le1_pct=X tip_yplus_max=X lift_N=X drag_N=X
+#     in_the_mean=0|1 band=X yplus_max=X yplus_mean=X yplus_le1_pct=X tip_yplus_max=X lift_N=X drag_N=X
 #     root_moment_z_Nm=X cpu_s=X wall_s=X
 #
 # --init-from: the rigid solve starts from another blcheck.sh run's flow (e.g. the next coarser
 # preset; rigid.sh --init-from BLCHECK_RUN/rigid). --algorithm simple: classic SIMPLE (rigid.sh).
+# --band-tolerance B: the solve may also stop in the mean (rigid.sh; 0, the default: off).
 # Exit 1 when the motion check fails or the first-cell y+ exceeds 1 anywhere on the foil (the
 # mesh's promise); the line is printed either way. Cost: coarse about 9 min on 2 cores (mesh
 # 20 s, motion 30 s, rigid solve 8 min), medium ~25 min, fine more than an hour.
 # Needs what mesh.sh and rigid.sh need (OpenFOAM v1912, gmsh, the build's bin/ on PATH).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-out="" preset=coarse flow=turbulent scheme=upwind np=2 maxIt=3000 initFrom="" algorithm=""
+out="" preset=coarse flow=turbulent scheme=upwind np=2 maxIt=3000 initFrom="" algorithm="" band=0
 die() { echo "error: blcheck.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
     case "$1" in
@@ -33,13 +34,16 @@ while [ $# -gt 0 ]; do
         --max-iterations) maxIt="$2"; shift 2 ;;
         --init-from) initFrom="$2"; shift 2 ;;
         --algorithm) algorithm="$2"; shift 2 ;;
-        -h|--help) sed -n '3,21p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        --band-tolerance) band="$2"; shift 2 ;;
+        -h|--help) sed -n '3,22p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) die "unknown option '$1' (see --help)" ;;
     esac
 done
 [ -n "$out" ] || die "--out RUNDIR is required (a run folder outside git)"
 case "$preset" in coarse|medium|fine) ;; *) die "--preset must be coarse, medium or fine" ;; esac
 "$here/tools/setFlow.sh" --check-only --flow "$flow" --scheme "$scheme" ${algorithm:+--algorithm "$algorithm"}
+awk -v b="$band" 'BEGIN{exit !(b ~ /^[0-9.eE+-]+$/ && b + 0 >= 0 && b + 0 < 1)}' ||
+    die "--band-tolerance '$band' must be 0 (off) or in (0, 1)"
 [ -z "$initFrom" ] || [ -f "$initFrom/rigid/rigid.csv" ] ||
     die "--init-from '$initFrom' is not a finished blcheck.sh run (no rigid/rigid.csv)"
 command -v fluid-app > /dev/null || die "fluid-app is not on PATH (put the build's bin/ first)"
@@ -57,14 +61,14 @@ nonorth=$(awk '/non-orthogonality Max/ {print $4; exit}' "$out/motion/log.checkM
 log "rigid solve ($flow, $scheme)"
 "$here/rigid.sh" --mesh "$out/mesh/fluid" --out "$out/rigid" --flow "$flow" --scheme "$scheme" \
     --np "$np" --max-iterations "$maxIt" ${initFrom:+--init-from "$(cd "$initFrom" && pwd)/rigid"} \
-    ${algorithm:+--algorithm "$algorithm"} \
+    ${algorithm:+--algorithm "$algorithm"} --band-tolerance "$band" \
     > "$out/log.rigid" 2>&1 ||
     die "rigid.sh failed (see $out/log.rigid)"
 /usr/bin/python3 - "$out/rigid/rigid.csv" "$preset" "$motion" "${nonorth:-nan}" <<'EOP'
 import csv, sys
 path, preset, motion, nonorth = sys.argv[1:5]
 row = next(csv.DictReader(open(path)))
-keys = ["iterations", "converged", "yplus_max", "yplus_mean", "yplus_le1_pct", "tip_yplus_max",
+keys = ["iterations", "converged", "in_the_mean", "band", "yplus_max", "yplus_mean", "yplus_le1_pct", "tip_yplus_max",
         "lift_N", "drag_N", "root_moment_z_Nm", "cpu_s", "wall_s"]
 print(f"blcheck: preset={preset} cells={row['cells']} motion={motion} "
       f"motion_max_nonorth_deg={nonorth} " + " ".join(f"{k}={row[k]}" for k in keys))

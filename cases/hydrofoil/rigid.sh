@@ -5,7 +5,7 @@
 #
 #   cases/hydrofoil/rigid.sh --mesh DIR/fluid --out RUNDIR [--flow laminar|transition|turbulent]
 #       [--scheme upwind|linearUpwind] [--np 2] [--tolerance 1e-5] [--max-iterations 3000]
-#       [--init-from RUN] [--algorithm simple]
+#       [--init-from RUN] [--algorithm simple] [--band-tolerance B]
 #
 #   --tolerance T        stop when the estimated force error is <= T |F|, held 100 iterations
 #                        (fsiDict rigid/estimateForceError; the 2-D section mode's criterion)
@@ -15,16 +15,23 @@
 #                        nearest-cell (tools/mapInitialFields.sh): grid sequencing, fewer
 #                        iterations; the stopping test is unchanged
 #   --algorithm simple   classic SIMPLE instead of the case's SIMPLEC (tools/setFlow.sh)
+#   --band-tolerance B   also stop "in the mean" (fsiDict rigid/bandTolerance, fluid-app/README.md):
+#                        at the end of a 100-iteration block, when over the last two blocks the
+#                        force stayed within +-B |F| and the blocks' means differ by <= T |F|.
+#                        For classic SIMPLE, whose force wanders by ~1e-5 |F| per iteration
+#                        once converged (the estimate above, up to 49 times the change, never
+#                        holds); 0 (default): off. The loads are then the last iterate's
 #
 # Writes RUNDIR/case (the OpenFOAM case, tools/fluidCase.sh) and RUNDIR/rigid.csv, one row:
-# cells, flow, scheme, iterations, converged, lift = -F_y, drag = F_x (N), root pitching moment
+# cells, flow, scheme, iterations, converged (in_the_mean 1: stopped by --band-tolerance, band
+# the force's relative half-range over the last 200 iterations), lift = -F_y, drag = F_x (N), root pitching moment
 # M_z about the root quarter chord (0.3685, 0, 0) (N m, the spanwise axis: nose-up positive, as
 # the 2-D section mode's C_M), the foil's first-cell y+ (yPlus function object: max, mean over the faces, the
 # fraction of foil faces with y+ <= 1, separately for the tip faces), CPU and wall seconds.
 # fluid-app must be on PATH (scripts/run and scripts/verify put the build's bin/ first).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-mesh="" out="" flow=laminar scheme=upwind np=2 tol=1e-5 maxIt=3000 initFrom="" algorithm=""
+mesh="" out="" flow=laminar scheme=upwind np=2 tol=1e-5 maxIt=3000 initFrom="" algorithm="" band=0
 die() { echo "error: rigid.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
     case "$1" in
@@ -37,7 +44,8 @@ while [ $# -gt 0 ]; do
         --max-iterations) maxIt="$2"; shift 2 ;;
         --init-from) initFrom="$2"; shift 2 ;;
         --algorithm) algorithm="$2"; shift 2 ;;
-        -h|--help) sed -n '3,23p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        --band-tolerance) band="$2"; shift 2 ;;
+        -h|--help) sed -n '3,31p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) die "unknown option '$1' (see --help)" ;;
     esac
 done
@@ -47,6 +55,10 @@ done
 [[ "$np" =~ ^[1-9][0-9]*$ ]] || die "--np '$np' must be a positive integer"
 [[ "$maxIt" =~ ^[1-9][0-9]*$ ]] || die "--max-iterations '$maxIt' must be a positive integer"
 awk -v t="$tol" 'BEGIN{exit !(t + 0 > 0 && t + 0 < 1)}' || die "--tolerance '$tol' must be in (0, 1)"
+awk -v b="$band" 'BEGIN{exit !(b ~ /^[0-9.eE+-]+$/ && b + 0 >= 0 && b + 0 < 1)}' ||
+    die "--band-tolerance '$band' must be 0 (off) or in (0, 1)"
+[ "$maxIt" -ge 200 ] || awk -v b="$band" 'BEGIN{exit !(b + 0 == 0)}' ||
+    die "--band-tolerance needs --max-iterations >= 200 (two blocks of 100)"
 "$here/tools/setFlow.sh" --check-only --flow "$flow" --scheme "$scheme" ${algorithm:+--algorithm "$algorithm"}
 [ -z "$initFrom" ] || { [ -f "$initFrom/rigid.csv" ] && [ -d "$initFrom/case" ]; } ||
     die "--init-from '$initFrom' is not a finished rigid.sh run (no rigid.csv / case)"
@@ -69,6 +81,8 @@ fd system/fsiDict rigid/residualRequired false
 fd system/fsiDict rigid/estimateForceError true
 fd system/fsiDict rigid/minIterations 100
 fd system/fsiDict rigid/stableIterations 100
+fd system/fsiDict rigid/bandTolerance "$band"
+fd system/fsiDict rigid/bandWindow 100
 fd system/controlDict endTime "$maxIt"
 fd system/controlDict writeInterval "$maxIt"
 # evaluated after the solve by simpleFoam -postProcess on the written fields (ASCII, so that the
@@ -81,7 +95,7 @@ fd system/controlDict functions/cellCentres \
 
 par=()
 [ "$np" -gt 1 ] && par=(-parallel)
-log "fluid-app -rigid on $np rank(s): flow $flow, scheme $scheme${algorithm:+, algorithm $algorithm}, force error <= $tol |F|, cap $maxIt"
+log "fluid-app -rigid on $np rank(s): flow $flow, scheme $scheme${algorithm:+, algorithm $algorithm}, force error <= $tol |F|$(awk -v b="$band" 'BEGIN{if (b + 0 > 0) printf ", or in the mean within +-%s", b}'), cap $maxIt"
 t0=$(date +%s.%N)
 ( cd "$case" && /usr/bin/time -f "%U %S" -o time.txt \
     mpirun --oversubscribe -np "$np" fluid-app -rigid "${par[@]}" > log.fluid-app 2>&1 ) ||
@@ -121,7 +135,8 @@ cf = patchValues("C")
 tip = cf[:, 2] > 0.100 - 1e-7          # faces of the tip plane z = 0.100
 cpu = sum(map(float, open(os.path.join(case, "time.txt")).read().split()[:2]))
 res = dict(cells=cells, flow=flow, scheme=scheme, iterations=row["simpleIterations"],
-           converged=row["converged"], lift_N="%.6g" % -float(row["Fy"]), drag_N="%.6g" % float(row["Fx"]),
+           converged=row["converged"], in_the_mean=row["inTheMean"], band="%.3g" % float(row["band"]),
+           lift_N="%.6g" % -float(row["Fy"]), drag_N="%.6g" % float(row["Fx"]),
            root_moment_z_Nm="%.6g" % mz, foil_faces=len(yp), yplus_max="%.3f" % yp.max(),
            yplus_mean="%.3f" % yp.mean(), yplus_le1_pct="%.2f" % (100.0 * np.mean(yp <= 1.0)),
            tip_faces=int(tip.sum()), tip_yplus_max="%.3f" % (yp[tip].max() if tip.any() else float("nan")),

@@ -310,13 +310,6 @@ Foam::fluidSolidCoupling::SolveControls Foam::fluidSolidCoupling::controls
     c.oscillationWindow = d.getOrDefault<label>("oscillationWindow", 0);
     c.bandTolerance = d.getOrDefault<scalar>("bandTolerance", 0);
     c.bandWindow = d.getOrDefault<label>("bandWindow", 100);
-    if (c.bandTolerance != 0 && subDictName != "coupled")
-    {
-        FatalIOErrorInFunction(dict_)
-            << "system/fsiDict: " << subDictName << ".bandTolerance is a coupled-only key"
-            << " (a rigid solve reports its band in rigidIterations.csv); remove it"
-            << exit(FatalIOError);
-    }
     if
     (
         c.bandTolerance < 0 || c.bandTolerance >= 1
@@ -426,6 +419,11 @@ int Foam::fluidSolidCoupling::runRigid(const SteadySolver& solve)
     Info<< "fsi: rigid solve: " << r.iterations << " SIMPLE iterations, residuals U "
         << r.residualU << " p " << r.residualP
         << (r.converged ? " (converged)" : " (iteration cap reached)") << endl;
+    if (r.inTheMean)
+    {
+        Info<< "fsi: the loads below are the last iterate's, within +-" << r.band
+            << " of the mean force" << endl;
+    }
     vector total(Zero), pressure(Zero);
     reportForces("rigid", &total, &pressure);
     checkAgainstForcesFunctionObject();

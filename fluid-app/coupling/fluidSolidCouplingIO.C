@@ -162,12 +162,14 @@ void Foam::fluidSolidCoupling::writeRigidForces
     os.precision(12);
     const vector viscous(total - pressure);
     os  << "Fx,Fy,Fz,pressureFx,pressureFy,pressureFz,viscousFx,viscousFy,viscousFz,"
-        << "simpleIterations,converged,residualU,residualP,clock_s" << nl
+        << "simpleIterations,converged,residualU,residualP,clock_s,inTheMean,band,meanChange"
+        << nl
         << total.x() << ',' << total.y() << ',' << total.z() << ','
         << pressure.x() << ',' << pressure.y() << ',' << pressure.z() << ','
         << viscous.x() << ',' << viscous.y() << ',' << viscous.z() << ','
         << r.iterations << ',' << int(r.converged) << ',' << r.residualU << ','
-        << r.residualP << ',' << mesh_.time().elapsedClockTime() << nl;
+        << r.residualP << ',' << mesh_.time().elapsedClockTime() << ','
+        << int(r.inTheMean) << ',' << r.band << ',' << r.meanChange << nl;
 }
 
 

@@ -436,10 +436,10 @@ def t_bad_case(a):
     check(rc != 0 and "system/fsiDict: coupled.bandTolerance 0.002 / bandWindow 600 are invalid" in log
           and "2 bandWindow <= maxIterations" in log,
           "coupled.bandWindow 600 above half the cap: exit %d, message names the key and the bound" % rc)
-    open(fsi, "w").write(good + "\nrigid { forceTolerance 1e-4; bandTolerance 2e-3; }\n")
+    open(fsi, "w").write(good + "\nrigid { forceTolerance 1e-4; bandTolerance 2e-3; bandWindow 5; }\n")
     rc, log = run([a.fluid_app, "-rigid", "-case", d], os.path.join(d, "log.rigid-band"))
-    check(rc != 0 and "system/fsiDict: rigid.bandTolerance is a coupled-only key" in log,
-          "rigid.bandTolerance: exit %d, message says it is coupled-only" % rc)
+    check(rc != 0 and "system/fsiDict: rigid.bandTolerance 0.002 / bandWindow 5 are invalid" in log,
+          "rigid.bandWindow 5: exit %d, message names the rigid key and the bound" % rc)
     # The run mode is resolved once, before OpenFOAM starts (fluid-app/coupling/runMode.H).
     open(fsi, "w").write(good + "\nmode rigd;\n")
     rc, log = run([a.fluid_app, "-case", d], os.path.join(d, "log.bad-mode"))
