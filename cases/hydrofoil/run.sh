@@ -25,6 +25,13 @@
 #                                           (tools/setFlow.sh; README "Flow models")
 #   --scheme upwind|linearUpwind            convection of U and the turbulence fields (default
 #                                           upwind; linearUpwind: second order, bounded)
+#   --algorithm simple                      classic SIMPLE (consistent no, relaxation p 0.3,
+#                                           U and turbulence 0.7) instead of the case's SIMPLEC
+#                                           (tools/setFlow.sh): SIMPLEC has no steady state on
+#                                           the medium boundary-layer mesh (README, "Mesh study
+#                                           of the rigid foil on the cgrid presets")
+#   --fluid-mesh snappy|cgrid               fluid mesh (mesh.sh; default snappy; cgrid: the
+#                                           boundary-layer mesh, y+ <= 1 on the whole foil)
 #   --restart                               continue an interrupted run in this folder (same
 #                                           options): finished runs are kept, an interrupted one
 #                                           continues from results/<run>/checkpoint/latest
@@ -39,7 +46,7 @@ set -euo pipefail
 source "$FSI_ROOT/scripts/env.sh"
 
 preset=coarse material=both npf=2 nps=2 launch=mpmd tc=0.12 cli=0.5 end="" timeout=900 meshFrom="" restart=0
-flow=laminar scheme=upwind
+flow=laminar scheme=upwind algorithm="" fluidMesh=snappy
 die() { echo "error: hydrofoil/run.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -55,15 +62,18 @@ while [ $# -gt 0 ]; do
     --mesh-from) meshFrom=$2; shift 2 ;;
     --flow) flow=$2; shift 2 ;;
     --scheme) scheme=$2; shift 2 ;;
+    --algorithm) algorithm=$2; shift 2 ;;
+    --fluid-mesh) fluidMesh=$2; shift 2 ;;
     --restart) restart=1; shift ;;
-    -h|--help) sed -n '3,33p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '3,40p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) die "unknown option '$1' (see --help)" ;;
   esac
 done
 case "$material" in viscoelastic|baseline|relaxed|both|elastic) ;; *) die "--material must be viscoelastic, baseline, relaxed, both or elastic" ;; esac
 case "$launch" in mpmd|port) ;; *) die "--launch must be mpmd or port" ;; esac
-case "$flow" in laminar|transition|turbulent) ;; *) die "--flow must be laminar, transition or turbulent" ;; esac
-case "$scheme" in upwind|linearUpwind) ;; *) die "--scheme must be upwind or linearUpwind" ;; esac
+"$FSI_ROOT/cases/hydrofoil/tools/setFlow.sh" --check-only --flow "$flow" --scheme "$scheme" \
+    ${algorithm:+--algorithm "$algorithm"}
+case "$fluidMesh" in snappy|cgrid) ;; *) die "--fluid-mesh must be snappy or cgrid" ;; esac
 [[ "$npf" =~ ^[1-9][0-9]*$ && "$nps" =~ ^[1-9][0-9]*$ ]] || die "--np-fluid/--np-solid must be positive integers"
 command -v fluid-app >/dev/null && command -v solid-app >/dev/null || die "fluid-app/solid-app not on PATH (build first)"
 
@@ -79,9 +89,9 @@ elif [ -n "$meshFrom" ]; then
   log "reusing the meshes of $meshFrom"
   rm -rf "$run/mesh" && cp -r "$meshFrom/mesh" "$run/mesh"
 else
-  log "meshing (preset $preset, t/c $tc, C_Li $cli)"
+  log "meshing (preset $preset, t/c $tc, C_Li $cli, fluid mesh $fluidMesh)"
   "$FSI_ROOT/cases/hydrofoil/mesh.sh" --out "$run/mesh" --preset "$preset" --tc "$tc" --cli "$cli" \
-      --np "$npf" > "$run/log.mesh" 2>&1 || { tail -n 20 "$run/log.mesh" >&2; die "meshing failed (log.mesh)"; }
+      --np "$npf" --fluid-mesh "$fluidMesh" > "$run/log.mesh" 2>&1 || { tail -n 20 "$run/log.mesh" >&2; die "meshing failed (log.mesh)"; }
 fi
 grep -E "^fluid:|^solid" "$run/mesh/mesh-summary.txt" 2>/dev/null | sed 's/^/  /' || true
 solidMesh=$run/mesh/solid/foil-tet10.msh
@@ -112,7 +122,8 @@ for m in "${runs[@]}"; do
   fi
   if [ ${#resume[@]} -eq 0 ]; then
     # the mesh's fluid case with this case's settings, flow model and scheme, decomposed
-    "$run/tools/fluidCase.sh" "$fluid" "$run/mesh/fluid" "$npf" --flow "$flow" --scheme "$scheme"
+    "$run/tools/fluidCase.sh" "$fluid" "$run/mesh/fluid" "$npf" --flow "$flow" --scheme "$scheme" \
+        ${algorithm:+--algorithm "$algorithm"}
   fi
   parallel=""
   [ "$npf" -gt 1 ] && parallel=-parallel
