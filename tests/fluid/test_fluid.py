@@ -9,6 +9,8 @@ TEST: cfd1-coarse | cfd1-fine | force-consistency | motion-rotation | motion-ben
 Exit 0 when every assertion holds; each assertion prints its figures.
 """
 import argparse
+import csv
+import io
 import math
 import os
 import re
@@ -409,6 +411,46 @@ def t_band_mean(a):
           " rel. diff %.2e <= 1e-9 (last iterate %s)" % (sent, mean, n - 19, n, rel, lastF))
 
 
+def t_rigid_band_mean(a):
+    """fsiDict rigid.bandTolerance: a rigid solve may stop in the mean too (classic SIMPLE's
+    force wander on the hydrofoil's cgrid meshes). From rest, with a steady test that cannot
+    hold (stableIterations above the cap) and bandWindow 10: the solve must stop at a block's
+    end, forces.csv must say converged 1, inTheMean 1, band <= 0.5 and meanChange <= the
+    forceTolerance 1e-3, its totals must be the last iterate of rigidIterations.csv (the loads
+    of a rigid solve are the last iterate's), and that iterate must lie within the reported
+    band of the Hann-weighted mean of the last two blocks (recomputed from the CSV)."""
+    fsi = ("rigid { maxIterations 400; residualRequired false; estimateForceError true;"
+           " stableIterations 1000; forceTolerance 1e-3; bandTolerance 0.5; bandWindow 10; }")
+    d = prepare(a, "rigid-band-mean", single=True, extra_fsi=fsi)
+    rc, log = run([a.fluid_app, "-rigid", "-case", d], os.path.join(d, "log.fluid-app"))
+    post = os.path.join(d, "postProcessing", "fsi")
+    m = re.search(r"SIMPLE converged in the mean in (\d+) iterations", log)
+    n = int(m.group(1)) if m else -1
+    check(rc == 0 and m is not None and n % 10 == 0 and 20 <= n < 400
+          and "the loads below are the last iterate's" in log,
+          "exit 0, stopped in the mean at a block's end (%d SIMPLE iterations), log says the loads"
+          " are the last iterate's" % n)
+    with open(os.path.join(post, "forces.csv")) if rc == 0 else io.StringIO("") as f:
+        row = next(csv.DictReader(f), {})
+    band = float(row.get("band", "nan"))
+    check(row.get("converged") == "1" and row.get("inTheMean") == "1" and int(row.get("simpleIterations", -1)) == n
+          and 0 < band <= 0.5 and float(row.get("meanChange", "nan")) <= 1e-3,
+          "forces.csv: converged 1, inTheMean 1, %s iterations, band %s <= 0.5, meanChange %s <= 1e-3"
+          % (row.get("simpleIterations"), row.get("band"), row.get("meanChange")))
+    hist = read_csv(os.path.join(post, "rigidIterations.csv")) if rc == 0 else []
+    last = [r for r in hist if n - 20 < int(r[0]) <= n]
+    weights = [math.sin(math.pi * (((int(r[0]) - 1) % 10) + 0.5) / 10) ** 2 for r in last]
+    mean = [sum(w * r[c] for w, r in zip(weights, last)) / sum(weights) for c in (1, 2, 3)]
+    total = [float(row.get(k, "nan")) for k in ("Fx", "Fy", "Fz")]
+    lastF = last[-1][1:4] if len(last) == 20 else [float("nan")] * 3
+    scale = math.hypot(*mean) if len(last) == 20 else float("nan")
+    check(math.dist(total, lastF) <= 1e-9 * scale,
+          "forces.csv totals %s are the last iterate %s of rigidIterations.csv" % (total, lastF))
+    check(math.dist(lastF, mean) <= band * scale,
+          "the last iterate is within the band: |F_n - mean| / |mean| = %.3g <= %.3g"
+          % (math.dist(lastF, mean) / scale, band))
+
+
 def t_bad_case(a):
     """Bad OpenFOAM-case input: a missing interface patch, a missing fsiDict key, a restart
     without a checkpointed level. Each stops non-zero, naming system/fsiDict (or the file) and the fix."""
@@ -625,7 +667,7 @@ def t_solid_death(a):
 
 TESTS = {"cfd1-coarse": t_cfd1_coarse, "cfd1-fine": t_cfd1_fine, "force-consistency": t_force_consistency,
          "motion-rotation": t_motion_rotation, "motion-bending": t_motion_bending,
-         "quality-guard": t_quality_guard, "wall-at-rest": t_wall_at_rest, "warm-start": t_warm_start, "warm-start-turbulent": t_warm_start_turbulent, "band-mean": t_band_mean, "bad-case": t_bad_case, "parallel-equivalence": t_parallel_equivalence,
+         "quality-guard": t_quality_guard, "wall-at-rest": t_wall_at_rest, "warm-start": t_warm_start, "warm-start-turbulent": t_warm_start_turbulent, "band-mean": t_band_mean, "rigid-band-mean": t_rigid_band_mean, "bad-case": t_bad_case, "parallel-equivalence": t_parallel_equivalence,
          "mpmd": t_mpmd, "port": t_port, "peer-abort": t_peer_abort,
          "failed-start": t_failed_start, "solid-death": t_solid_death}
 
