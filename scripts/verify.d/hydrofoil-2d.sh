@@ -29,6 +29,10 @@
 #                  next coarser level (run2d.sh --init-from; grid sequencing, fewer iterations)
 #   H2D_INLET      "TU L": inlet turbulence intensity and length scale (m) for every solve
 #                  (run2d.sh --tu --length-scale; default: those of cases/hydrofoil/fluid/0.orig)
+#   H2D_ALGORITHM  simplec (default: the case's SIMPLEC) | simple (classic SIMPLE, run2d.sh
+#                  --algorithm; its run folders end in -simple)
+#   H2D_BAND       run2d.sh --band-tolerance (default 0: off; e.g. 1e-4 with classic SIMPLE,
+#                  whose force keeps wandering by ~1e-5 once converged)
 #   H2D_RUNS       run folders (default $FSI_VERIFY_DIR/runs, not tracked)
 #   H2D_REUSE=1    keep finished runs (RUN/section2d.csv) instead of redoing them
 # gci.csv has one row per quantity for every three consecutive levels (coarse to fine), so
@@ -43,6 +47,10 @@ models=${H2D_MODELS:-turbulent}
 te=${H2D_TE:-sharp}
 runs=${H2D_RUNS:-$FSI_VERIFY_DIR/runs}
 reuse=${H2D_REUSE:-0}
+algorithm=${H2D_ALGORITHM:-simplec}
+case "$algorithm" in simple|simplec) ;; *) echo "error: hydrofoil-2d: H2D_ALGORITHM='$algorithm' must be simple or simplec" >&2; exit 2 ;; esac
+solverArgs=(--band-tolerance "${H2D_BAND:-0}") suffix=""
+[ "$algorithm" = simplec ] || { solverArgs+=(--algorithm "$algorithm"); suffix=-$algorithm; }
 mkdir -p "$runs"
 
 inlet=()
@@ -54,14 +62,15 @@ fi
 
 # one solve: run2d.sh into RUN unless reusable; echo its CSV row prefixed by te and h
 solve() {  # model level te maxIterations [initFromRun]
-    local r=$runs/$1-$3-L$2 init=()
+    local r=$runs/$1-$3-L$2$suffix init=()
     [ -z "${5:-}" ] || init=(--init-from "$5")
     if [ "$reuse" = 1 ] && [ -f "$r/section2d.csv" ]; then
         echo "hydrofoil-2d: reusing $r" >&2
     else
         echo "hydrofoil-2d: $1 level $2 te $3 ($(date +%H:%M:%S), load $(cut -d' ' -f1 /proc/loadavg))" >&2
         "$run2d" --out "$r" --level "$2" --flow "$1" --te "$3" --max-iterations "$4" \
-            --tolerance "${H2D_TOLERANCE:-1e-5}" "${inlet[@]}" "${init[@]}" > "$r.log" 2>&1 ||
+            --tolerance "${H2D_TOLERANCE:-1e-5}" "${solverArgs[@]}" ${inlet[@]+"${inlet[@]}"} \
+            ${init[@]+"${init[@]}"} > "$r.log" 2>&1 ||
             { tail -5 "$r.log" >&2; echo "error: hydrofoil-2d: $1 level $2 failed (see $r.log)" >&2; exit 1; }
     fi
     local h; h=$(sed -n 's/.* h_m=\([^ ]*\).*/\1/p' "$r/mesh/section2d-mesh.txt")
@@ -69,13 +78,13 @@ solve() {  # model level te maxIterations [initFromRun]
 }
 
 raw=$FSI_VERIFY_DIR/levels.csv
-echo "te,h_m,level,cells,flow,scheme,iterations,converged,C_L,C_D,C_M,yplus_max,yplus_mean,cpu_s,wall_s,cl_min,cl_max,turb_from_suction,sep_suction,turb_from_pressure,sep_pressure,load1" > "$raw"
+echo "te,h_m,level,cells,flow,scheme,iterations,converged,C_L,C_D,C_M,yplus_max,yplus_mean,cpu_s,wall_s,cl_min,cl_max,turb_from_suction,sep_suction,turb_from_pressure,sep_pressure,in_the_mean,band,load1" > "$raw"
 for model in $models; do
     previous=""
     for level in $levels; do
         solve "$model" "$level" "$te" "${H2D_MAX_ITERATIONS:-8000}" "$previous" >> "$raw"
         tail -n 1 "$raw"
-        [ "${H2D_SEQUENCE:-1}" != 1 ] || previous=$runs/$model-$te-L$level
+        [ "${H2D_SEQUENCE:-1}" != 1 ] || previous=$runs/$model-$te-L$level$suffix
     done
 done
 if [ "${H2D_EVIDENCE:-1}" = 1 ]; then

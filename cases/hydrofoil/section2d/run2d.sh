@@ -7,6 +7,7 @@
 #   cases/hydrofoil/section2d/run2d.sh --out DIR [--level K] [--flow laminar|transition|turbulent]
 #       [--scheme upwind|linearUpwind] [--tolerance 1e-6] [--max-iterations 6000] [--mesh-only]
 #       [--tc 0.12] [--cli 0.5] [--tu 0.01] [--length-scale 0.001] [--init-from RUN]
+#       [--algorithm simple] [--band-tolerance B]
 #
 #   --level K         mesh level (0 coarsest; every level refines all lengths by sqrt 2)
 #   --level-along K, --level-across K  refine along the foil and the wake (n_side, n_te,
@@ -22,6 +23,10 @@
 #   --init-from RUN   start from the solution of another run2d.sh run (RUN/case, e.g. the next
 #                     coarser level, same flow model), mapped with mapFields (nearest cell):
 #                     grid sequencing, fewer iterations; the stopping test is unchanged
+#   --algorithm simple  classic SIMPLE instead of the case's SIMPLEC (tools/setFlow.sh)
+#   --band-tolerance B  the solve may also stop in the mean (fsiDict rigid.bandTolerance, blocks
+#                     of 100 iterations; ../rigid.sh): for classic SIMPLE's force wander; 0
+#                     (default): off
 # Writes DIR/mesh (the C-grid as MSH 2.2 and its parameters), DIR/case (OpenFOAM case, fields for ParaView in the last
 # time folder, postProcessing/forcesFinal and yPlus) and DIR/section2d.csv (one row: level,
 # cells, flow, scheme, iterations, converged, C_L, C_D, C_M, y+ max / mean on the foil, CPU and
@@ -37,7 +42,7 @@
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 out="" level=0 flow=laminar scheme=linearUpwind tol=1e-6 maxIt=6000 meshOnly=0 tc=0.12 cli=0.5 te=blunt
-tu="" lscale="" initFrom="" levelArgs=()
+tu="" lscale="" initFrom="" levelArgs=() algorithm="" band=0
 die() { echo "error: section2d/run2d.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
     case "$1" in
@@ -57,14 +62,17 @@ while [ $# -gt 0 ]; do
         --tu) tu="$2"; shift 2 ;;
         --length-scale) lscale="$2"; shift 2 ;;
         --init-from) initFrom="$2"; shift 2 ;;
-        -h|--help) sed -n '3,36p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        --algorithm) algorithm="$2"; shift 2 ;;
+        --band-tolerance) band="$2"; shift 2 ;;
+        -h|--help) sed -n '3,40p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) die "unknown option '$1' (see --help)" ;;
     esac
 done
 [ -n "$out" ] || die "--out DIR is required (a run folder outside git)"
 [[ "$level" =~ ^[0-6]$ ]] || die "--level '$level' must be 0..6"
-case "$flow" in laminar|transition|turbulent) ;; *) die "--flow '$flow' unknown; use laminar, transition or turbulent" ;; esac
-case "$scheme" in upwind|linearUpwind) ;; *) die "--scheme '$scheme' unknown; use upwind or linearUpwind" ;; esac
+"$here/../tools/setFlow.sh" --check-only --flow "$flow" --scheme "$scheme" ${algorithm:+--algorithm "$algorithm"}
+awk -v b="$band" 'BEGIN{exit !(b ~ /^[0-9.eE+-]+$/ && b + 0 >= 0 && b + 0 < 1)}' ||
+    die "--band-tolerance '$band' must be 0 (off) or in (0, 1)"
 if [ -n "$tu$lscale" ]; then
     [ -n "$tu" ] && [ -n "$lscale" ] || die "--tu and --length-scale go together"
     [[ "$tu" =~ ^(0?\.[0-9]+|[0-9]\.?[0-9]*[eE]-[0-9]+)$ ]] && [[ "$lscale" =~ ^(0?\.[0-9]+|[0-9]\.?[0-9]*[eE]-[0-9]+)$ ]] \
@@ -109,7 +117,7 @@ log "level $level: $cells cells, $foilFaces foil faces, max non-orthogonality $n
 # ---- case set-up --------------------------------------------------------------------------
 cp -r "$here/../fluid/0.orig" "$case/0"
 rm -f "$case/0/pointDisplacement"
-"$here/../tools/setFlow.sh" "$case" --flow "$flow" --scheme "$scheme" > /dev/null
+"$here/../tools/setFlow.sh" "$case" --flow "$flow" --scheme "$scheme" ${algorithm:+--algorithm "$algorithm"} > /dev/null
 fd() { foamDictionary "$case/$1" -entry "$2" -set "$3" > /dev/null; }
 if [ -n "$tu$lscale" ]; then   # both given and checked with the options above
     read -r kIn omegaIn < <("$py" -c "import math, sys
@@ -134,6 +142,8 @@ fd system/fsiDict rigid/residualRequired false
 fd system/fsiDict rigid/estimateForceError true
 fd system/fsiDict rigid/minIterations 100
 fd system/fsiDict rigid/stableIterations 100   # a pause of a slow oscillation does not stop it
+fd system/fsiDict rigid/bandTolerance "$band"
+fd system/fsiDict rigid/bandWindow 100
 fd system/controlDict endTime "$maxIt"
 fd system/controlDict writeInterval "$maxIt"
 fd system/controlDict functions/forces/CofR "(0.3685 0 0)"
@@ -154,7 +164,7 @@ fd system/controlDict functions/foilSurface \
        surfaces ( foil { type patch; patches (foil); interpolate false; } ); }'
 
 # ---- solve --------------------------------------------------------------------------------
-log "fluid-app -rigid: flow $flow, scheme $scheme, estimated force error <= $tol |F|, cap $maxIt"
+log "fluid-app -rigid: flow $flow, scheme $scheme${algorithm:+, algorithm $algorithm}, estimated force error <= $tol |F|$(awk -v b="$band" 'BEGIN{if (b + 0 > 0) printf ", or in the mean within +-%s", b}'), cap $maxIt"
 t0=$(date +%s.%N)
 ( cd "$case" && /usr/bin/time -f "%U %S" -o time.txt fluid-app -rigid > log.fluid-app 2>&1 ) \
     || { tail -20 "$case/log.fluid-app"; die "fluid-app failed (see $case/log.fluid-app)"; }
@@ -224,7 +234,7 @@ r = dict(level=level, cells=cells, flow=flow, scheme=scheme,
          yplus_max=ypMax, yplus_mean=ypMean, cpu_s=cpu, wall_s=float(t1) - float(t0),
          cl_min=clMin, cl_max=clMax, turb_from_suction=float(onSuction),
          sep_suction=float(sepSuction), turb_from_pressure=float(onPressure),
-         sep_pressure=float(sepPressure))
+         sep_pressure=float(sepPressure), in_the_mean=row["inTheMean"], band=float(row["band"]))
 # the solver's own force history (fluid-app's rigidIterations.csv): its C_L band over the
 # last SIMPLE_WINDOW iterations of a solve that reached the cap, beside the simpleFoam window's
 hist = os.path.join(case, "postProcessing/fsi/rigidIterations.csv")
