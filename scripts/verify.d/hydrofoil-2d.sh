@@ -31,8 +31,9 @@
 #                  (run2d.sh --tu --length-scale; default: those of cases/hydrofoil/fluid/0.orig)
 #   H2D_ALGORITHM  simplec (default: the case's SIMPLEC) | simple (classic SIMPLE, run2d.sh
 #                  --algorithm; its run folders end in -simple)
-#   H2D_BAND       run2d.sh --band-tolerance (default 0: off; e.g. 1e-4 with classic SIMPLE,
-#                  whose force keeps wandering by ~1e-5 once converged)
+#   H2D_BAND       run2d.sh --band-tolerance (default 0: off). Classic SIMPLE on level 0 kept a
+#                  period-8 oscillation of +-3.4e-4 in C_L (case README, "Flow models"), so a
+#                  band below that never fires there
 #   H2D_RUNS       run folders (default $FSI_VERIFY_DIR/runs, not tracked)
 #   H2D_REUSE=1    keep finished runs (RUN/section2d.csv) instead of redoing them
 # gci.csv has one row per quantity for every three consecutive levels (coarse to fine), so

@@ -374,6 +374,18 @@ def t_warm_start_turbulent(a):
           % (m.group(1) if m else "no"))
 
 
+def hann_mean(rows, n, window, iteration_col, force_cols):
+    """The rows of the last two blocks of `window` SIMPLE iterations ending at iteration n, and
+    their force mean weighted per block by sin^2 (fluid-app's band rule,
+    SteadyConvergence::blockWeight), recomputed from an iteration CSV."""
+    last = [r for r in rows if n - 2 * window < int(r[iteration_col]) <= n]
+    weights = [math.sin(math.pi * (((int(r[iteration_col]) - 1) % window) + 0.5) / window) ** 2
+               for r in last]
+    if not last:
+        return last, [float("nan")] * len(force_cols)
+    return last, [sum(w * r[c] for w, r in zip(weights, last)) / sum(weights) for c in force_cols]
+
+
 def t_band_mean(a):
     """fsiDict coupled.bandTolerance (fluid-app/coupling/steadyConvergence.H): a solve that has
     not converged may stop in the mean at the end of a block. A prescribed 2 deg rotation from
@@ -399,9 +411,7 @@ def t_band_mean(a):
           " means differ by %s), reported converged" % (n, m.group(2) if m else "?", m.group(3) if m else "?"))
     check(m is not None and float(m.group(3)) <= 1e-4, "blocks' means differ by <= forceTolerance 1e-4")
     hist = [r for r in read_csv(os.path.join(post, "solveIterations.csv"))] if rc == 0 else []
-    last = [r for r in hist if n - 20 < int(r[2]) <= n]
-    weights = [math.sin(math.pi * (((int(r[2]) - 1) % 10) + 0.5) / 10) ** 2 for r in last]
-    mean = [sum(w * r[c] for w, r in zip(weights, last)) / sum(weights) for c in (3, 4, 5)]
+    last, mean = hann_mean(hist, n, 10, 2, (3, 4, 5))
     files = [f for f in os.listdir(post) if f.startswith("interfaceForces_") and f != "interfaceForces_rigid.csv"] if rc == 0 else []
     faces = read_csv(os.path.join(post, files[0])) if len(files) == 1 else []
     sent = [sum(r[c] for r in faces) for c in (1, 2, 3)]
@@ -438,9 +448,7 @@ def t_rigid_band_mean(a):
           "forces.csv: converged 1, inTheMean 1, %s iterations, band %s <= 0.5, meanChange %s <= 1e-3"
           % (row.get("simpleIterations"), row.get("band"), row.get("meanChange")))
     hist = read_csv(os.path.join(post, "rigidIterations.csv")) if rc == 0 else []
-    last = [r for r in hist if n - 20 < int(r[0]) <= n]
-    weights = [math.sin(math.pi * (((int(r[0]) - 1) % 10) + 0.5) / 10) ** 2 for r in last]
-    mean = [sum(w * r[c] for w, r in zip(weights, last)) / sum(weights) for c in (1, 2, 3)]
+    last, mean = hann_mean(hist, n, 10, 0, (1, 2, 3))
     total = [float(row.get(k, "nan")) for k in ("Fx", "Fy", "Fz")]
     lastF = last[-1][1:4] if len(last) == 20 else [float("nan")] * 3
     scale = math.hypot(*mean) if len(last) == 20 else float("nan")
