@@ -32,6 +32,12 @@
 #                                           of the rigid foil on the cgrid presets")
 #   --fluid-mesh snappy|cgrid               fluid mesh (mesh.sh; default snappy; cgrid: the
 #                                           boundary-layer mesh, y+ <= 1 on the whole foil)
+#   --init-from CASE                        start every fluid solve's first iteration from the
+#                                           solution of the OpenFOAM case CASE (reconstructed,
+#                                           latest time; e.g. a rigid.sh/blcheck.sh rigid/case
+#                                           on the same or another mesh), mapped onto this
+#                                           mesh (tools/mapInitialFields.sh): level 0 then
+#                                           starts from the rigid flow instead of from rest
 #   --restart                               continue an interrupted run in this folder (same
 #                                           options): finished runs are kept, an interrupted one
 #                                           continues from results/<run>/checkpoint/latest
@@ -46,7 +52,7 @@ set -euo pipefail
 source "$FSI_ROOT/scripts/env.sh"
 
 preset=coarse material=both npf=2 nps=2 launch=mpmd tc=0.12 cli=0.5 end="" timeout=900 meshFrom="" restart=0
-flow=laminar scheme=upwind algorithm="" fluidMesh=snappy
+flow=laminar scheme=upwind algorithm="" fluidMesh=snappy initFrom=""
 die() { echo "error: hydrofoil/run.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -64,6 +70,7 @@ while [ $# -gt 0 ]; do
     --scheme) scheme=$2; shift 2 ;;
     --algorithm) algorithm=$2; shift 2 ;;
     --fluid-mesh) fluidMesh=$2; shift 2 ;;
+    --init-from) [ $# -ge 2 ] || die "--init-from needs an OpenFOAM case folder"; initFrom=$2; shift 2 ;;
     --restart) restart=1; shift ;;
     -h|--help) sed -n '3,40p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) die "unknown option '$1' (see --help)" ;;
@@ -75,6 +82,10 @@ case "$launch" in mpmd|port) ;; *) die "--launch must be mpmd or port" ;; esac
     ${algorithm:+--algorithm "$algorithm"}
 case "$fluidMesh" in snappy|cgrid) ;; *) die "--fluid-mesh must be snappy or cgrid" ;; esac
 [[ "$npf" =~ ^[1-9][0-9]*$ && "$nps" =~ ^[1-9][0-9]*$ ]] || die "--np-fluid/--np-solid must be positive integers"
+if [ -n "$initFrom" ]; then
+  [ -d "$initFrom/constant/polyMesh" ] || die "--init-from $initFrom: not an OpenFOAM case (no constant/polyMesh)"
+  initFrom=$(cd "$initFrom" && pwd)
+fi
 command -v fluid-app >/dev/null && command -v solid-app >/dev/null || die "fluid-app/solid-app not on PATH (build first)"
 
 run=$PWD
@@ -123,7 +134,7 @@ for m in "${runs[@]}"; do
   if [ ${#resume[@]} -eq 0 ]; then
     # the mesh's fluid case with this case's settings, flow model and scheme, decomposed
     "$run/tools/fluidCase.sh" "$fluid" "$run/mesh/fluid" "$npf" --flow "$flow" --scheme "$scheme" \
-        ${algorithm:+--algorithm "$algorithm"}
+        ${algorithm:+--algorithm "$algorithm"} ${initFrom:+--init-from "$initFrom"}
   fi
   parallel=""
   [ "$npf" -gt 1 ] && parallel=-parallel
