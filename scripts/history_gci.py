@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Mesh study of the hydrofoil on three presets: the viscoelastic history, or the rigid foil.
 
-usage: history_gci.py [--rigid] [--model NAME] [--out GCI_CSV] [--table] COARSE MEDIUM FINE
+usage: history_gci.py [--rigid | --steady] [--model NAME] [--out GCI_CSV] [--table] COARSE MEDIUM FINE
 
 COARSE, MEDIUM, FINE: run folders of the same case on three presets (a `run.sh` output folder,
 or a bench-fsi work folder whose iqn-ils/ run is used), each with results/visco/history.csv and
@@ -22,6 +22,16 @@ rigid.csv, or blcheck.sh folders with rigid/rigid.csv; the cell count is rigid.c
 quantities are the lift -F_y [N], the drag F_x [N] and the root pitching moment M_z [N m]
 (quantity names lift_N, drag_N, root_moment_z_Nm), and a level counts as settled when its
 rigid.csv says converged = 1.
+
+--steady: COARSE, MEDIUM, FINE are run.sh folders of the coupled elastic t = 0 state
+(`run.sh --material baseline`: results/baseline/history.csv, one accepted level, and
+mesh/mesh-summary.txt); the quantities are the tip AOA [deg], the tip deflection [m] (along the
+lift direction -y, the mean of the tip leading and trailing edge points) and the lift -F_y and
+drag F_x [N], all with the suffix @t=0; a level counts as settled when history.csv says
+converged = 1.
+
+With --out, rows of GCI_CSV with another model are kept (one file holds several studies, one
+block per model); rows of this model are replaced.
 
 Exits 1 with a one-line error when a folder lacks a file or a time.
 """
@@ -78,6 +88,29 @@ def values_at_times(history):
     return out
 
 
+def steady_run(folder):
+    """cells, {quantity@t=0: value} and converged of a run.sh --material baseline folder."""
+    history = os.path.join(folder, "results", "baseline", "history.csv")
+    summary = os.path.join(folder, "mesh", "mesh-summary.txt")
+    for path in (history, summary):
+        if not os.path.isfile(path):
+            fail(f"{folder}: no {os.path.relpath(path, folder)}; give a run.sh --material "
+                 "baseline folder")
+    rows = list(csv.DictReader(open(history)))
+    if len(rows) != 1:
+        fail(f"{history}: one accepted level expected, found {len(rows)}")
+    r = rows[0]
+    try:
+        values = {"tip_aoa_deg@t=0": float(r["tip_aoa_deg"]),
+                  "tip_deflection_m@t=0": -0.5 * (float(r["tip_le_uy"]) + float(r["tip_te_uy"])),
+                  "lift_N@t=0": -float(r["Fy"]),
+                  "drag_N@t=0": float(r["Fx"])}
+    except (KeyError, ValueError) as e:
+        fail(f"{history}: column tip_aoa_deg, tip_le_uy, tip_te_uy, Fy or Fx missing or not a "
+             f"number ({e})")
+    return fluid_cells(summary), values, r.get("converged") == "1"
+
+
 def rigid_run(folder):
     """cells, {quantity: value} and converged (bool) of a rigid.sh / blcheck.sh folder."""
     for path in (os.path.join(folder, "rigid.csv"), os.path.join(folder, "rigid", "rigid.csv")):
@@ -110,11 +143,13 @@ def history_runs(folders):
 
 
 def main(argv):
-    model, out, table, rigid, folders = None, None, False, False, []
+    model, out, table, rigid, steady, folders = None, None, False, False, False, []
     i = 0
     while i < len(argv):
         if argv[i] == "--rigid":
             rigid, i = True, i + 1
+        elif argv[i] == "--steady":
+            steady, i = True, i + 1
         elif argv[i] == "--model":
             model, i = argv[i + 1], i + 2
         elif argv[i] == "--out":
@@ -122,15 +157,22 @@ def main(argv):
         elif argv[i] == "--table":
             table, i = True, i + 1
         elif argv[i].startswith("--"):
-            fail(f"unknown option {argv[i]} (--rigid, --model NAME, --out FILE, --table)")
+            fail(f"unknown option {argv[i]} (--rigid, --steady, --model NAME, --out FILE, --table)")
         else:
             folders.append(argv[i])
             i += 1
+    if rigid and steady:
+        fail("--rigid and --steady exclude each other")
     if len(folders) != 3:
         fail("three run folders needed, coarsest first (COARSE MEDIUM FINE)")
     if model is None:
         model = "turbulent-upwind-cgrid" if rigid else "laminar-upwind"
-    runs = [rigid_run(f) for f in folders] if rigid else history_runs(folders)
+    if rigid:
+        runs = [rigid_run(f) for f in folders]
+    elif steady:
+        runs = [steady_run(f) for f in folders]
+    else:
+        runs = history_runs(folders)
     cells = [c for c, _, _ in runs]
     if not cells[0] < cells[1] < cells[2]:
         fail(f"fluid cells {cells}: the folders must go from coarsest to finest")
@@ -157,9 +199,15 @@ def main(argv):
             "asymptotic_range": "yes" if asymptotic else "no"})
     columns = list(rows[0].keys())
     if out:
+        kept = []
+        if os.path.isfile(out):
+            with open(out, newline="") as f:
+                kept = [r for r in csv.DictReader(f) if r.get("model") != model]
         with open(out, "w", newline="") as f:
-            w = csv.DictWriter(f, fieldnames=columns)
+            w = csv.DictWriter(f, fieldnames=columns, restval="", extrasaction="ignore")
             w.writeheader()
+            for r in kept:
+                w.writerow(r)
             for r in rows:
                 w.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in r.items()})
     if table or not out:

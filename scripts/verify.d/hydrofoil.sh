@@ -23,6 +23,16 @@
 #                      factorization, took longer than run.sh's default 900 s under load)
 #   HYDROFOIL_MAX_ERROR  if set (e.g. 0.10): fail unless every quantity of the second-finest
 #                      level is within this relative error of the finest (the CTest check)
+#   HYDROFOIL_FLUID_MESH snappy (default) | cgrid: mesh.sh --fluid-mesh (the boundary-layer mesh)
+#   HYDROFOIL_FLOW, HYDROFOIL_SCHEME, HYDROFOIL_ALGORITHM  run.sh --flow / --scheme / --algorithm
+#                      (defaults laminar, upwind and the case's SIMPLEC)
+#   HYDROFOIL_INIT_FROM  a path with LEVEL in it (e.g. .../turbulent-upwind-simple-LEVEL/rigid/case):
+#                      each level's fluid starts from that OpenFOAM case's solution (run.sh
+#                      --init-from), LEVEL replaced by the preset; must exist for every level
+#   HYDROFOIL_GCI_OUT  with three levels: also write the observed order and GCI_fine of the tip
+#                      AOA, tip deflection, lift and drag (scripts/history_gci.py --steady) into
+#                      this CSV, as model HYDROFOIL_GCI_MODEL (default FLOW-SCHEME-ALGORITHM-
+#                      MESH-baseline); the file's rows of other models are kept
 set -euo pipefail
 : "${FSI_VERIFY_DIR:?run through scripts/verify hydrofoil}"
 root=${FSI_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}
@@ -34,11 +44,23 @@ runs=${HYDROFOIL_RUNS:-$FSI_VERIFY_DIR}
 reuse=${HYDROFOIL_REUSE:-0}
 timeout=${HYDROFOIL_TIMEOUT:-3600}
 npf=2 nps=1
+fluidMesh=${HYDROFOIL_FLUID_MESH:-snappy}
+flow=${HYDROFOIL_FLOW:-laminar} scheme=${HYDROFOIL_SCHEME:-upwind} algorithm=${HYDROFOIL_ALGORITHM:-}
+initPattern=${HYDROFOIL_INIT_FROM:-}
+case "$fluidMesh" in snappy|cgrid) ;; *) echo "error: hydrofoil: HYDROFOIL_FLUID_MESH='$fluidMesh' must be snappy or cgrid" >&2; exit 2 ;; esac
+# HYDROFOIL_FLOW/SCHEME/ALGORITHM: setFlow.sh names a bad value in one line
+"$case_dir/tools/setFlow.sh" --check-only --flow "$flow" --scheme "$scheme" ${algorithm:+--algorithm "$algorithm"} || exit 2
+if [ -n "$initPattern" ]; then
+  for level in $levels; do
+    [ -d "${initPattern//LEVEL/$level}/constant/polyMesh" ] || { echo "error: hydrofoil: HYDROFOIL_INIT_FROM: no OpenFOAM case ${initPattern//LEVEL/$level} for $level (run its rigid solve first, e.g. scripts/verify hydrofoil-3d-rigid)" >&2; exit 2; }
+  done
+fi
 csv=$FSI_VERIFY_DIR/error_vs_runtime.csv
 raw=$FSI_VERIFY_DIR/levels.csv
 mkdir -p "$runs"
 echo "level,size,cores,wall_s,cpu_s,mesh_wall_s,mesh_cpu_s,load1,coupling_iterations,fluid_iterations,tip_aoa,tip_deflection,lift,drag" > "$raw"
 TIMEFORMAT='%R %U %S'
+folders=()
 for level in $levels; do
   m=$runs/mesh-$level r=$runs/run-$level
   if [ "$reuse" = 1 ] && [ -f "$m/mesh/mesh-summary.txt" ]; then
@@ -46,7 +68,7 @@ for level in $levels; do
   else
     echo "hydrofoil: $level: meshing in $m ($(date +%H:%M:%S))"
     rm -rf "$m"; mkdir -p "$m"
-    { time "$case_dir/mesh.sh" --out "$m/mesh" --preset "$level" --np "$npf" > "$m/log.mesh" 2>&1; } 2> "$m/time.mesh" ||
+    { time "$case_dir/mesh.sh" --out "$m/mesh" --preset "$level" --np "$npf" --fluid-mesh "$fluidMesh" > "$m/log.mesh" 2>&1; } 2> "$m/time.mesh" ||
       { echo "error: hydrofoil $level meshing failed, see $m/log.mesh" >&2; tail -5 "$m/log.mesh" >&2; exit 1; }
   fi
   if [ "$reuse" = 1 ] && [ -f "$r/results/baseline/history.csv" ] && [ -f "$r/time.run" ]; then
@@ -57,7 +79,9 @@ for level in $levels; do
     cp -r "$case_dir" "$r"
     cut -d' ' -f1 /proc/loadavg > "$r/load1"
     { time (cd "$r" && ./run.sh --preset "$level" --material baseline --np-fluid "$npf" --np-solid "$nps" \
-        --timeout "$timeout" --mesh-from "$m" > log.run 2>&1); } 2> "$r/time.run" ||
+        --timeout "$timeout" --mesh-from "$m" --flow "$flow" --scheme "$scheme" \
+        ${algorithm:+--algorithm "$algorithm"} ${initPattern:+--init-from "${initPattern//LEVEL/$level}"} \
+        > log.run 2>&1); } 2> "$r/time.run" ||
       { echo "error: hydrofoil $level run failed, see $r/log.run" >&2; tail -5 "$r/log.run" >&2; exit 1; }
   fi
   cells=$(sed -n 's/^fluid: cells \([0-9]*\).*/\1/p' "$m/mesh/mesh-summary.txt" | tail -n 1)
@@ -75,6 +99,7 @@ print(f"{level},{cells},{ranks},{float(rw):.1f},{float(ru) + float(rs):.1f},{mw}
       f"{defl:.6e},{-float(row['Fy']):.6g},{float(row['Fx']):.6g}")
 PY
   tail -n 1 "$raw"
+  folders+=("$r")
 done
 
 # Errors against the finest level; Richardson information with three levels.
@@ -137,3 +162,8 @@ if max_error:
     print(f"check: every quantity of {r['level']} within {100 * tol:g} % of {ref['level']}")
 PY
 cat "$csv"
+if [ -n "${HYDROFOIL_GCI_OUT:-}" ] && [ ${#folders[@]} = 3 ]; then
+  "$FSI_PYTHON" "$root/scripts/history_gci.py" --steady --table \
+      --model "${HYDROFOIL_GCI_MODEL:-$flow-$scheme-${algorithm:-simplec}-$fluidMesh-baseline}" \
+      --out "$HYDROFOIL_GCI_OUT" "${folders[@]}"
+fi

@@ -145,5 +145,69 @@ class RigidGciTest(unittest.TestCase):
             self.assertIn("no rigid.csv", r.stderr)
 
 
+class SteadyGciTest(unittest.TestCase):
+    """history_gci.py --steady on three synthetic run.sh --material baseline folders whose
+    coupled t = 0 state follows phi = phi_ext + C h^2 (h = cells^(-1/3)); --out keeps the rows
+    of other models in the same file."""
+
+    CELLS = (276336, 595390, 1277256)
+
+    def make_run(self, root, name, cells, converged=1):
+        folder = os.path.join(root, name)
+        os.makedirs(os.path.join(folder, "results", "baseline"))
+        os.makedirs(os.path.join(folder, "mesh"))
+        with open(os.path.join(folder, "mesh", "mesh-summary.txt"), "w") as f:
+            f.write("fluid: cells %d points 1 foil-faces 1\n" % cells)
+        h2 = cells ** (-2.0 / 3.0)
+        # tip deflection = -(uy_le + uy_te)/2 = 0.009 + 0.4 h^2 (le and te differ by 2e-3 m)
+        defl = 0.009 + 0.4 * h2
+        with open(os.path.join(folder, "results", "baseline", "history.csv"), "w") as f:
+            f.write("level,time,converged,Fx,Fy,tip_le_uy,tip_te_uy,tip_aoa_deg\n")
+            f.write("0,0,%d,%.15g,%.15g,%.15g,%.15g,%.15g\n"
+                    % (converged, 0.36 + 20.0 * h2, -(1.3 + 60.0 * h2), -defl + 1e-3, -defl - 1e-3,
+                       -2.6 - 100.0 * h2))
+        return folder
+
+    def test_second_order_sequence_and_merge(self):
+        import csv
+        import subprocess
+        import tempfile
+        script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..",
+                              "scripts", "history_gci.py")
+        with tempfile.TemporaryDirectory() as root:
+            runs = [self.make_run(root, n, c) for n, c in zip(("coarse", "medium", "fine"), self.CELLS)]
+            out = os.path.join(root, "gci.csv")
+            with open(out, "w") as f:  # an earlier study of another model in the same file
+                f.write("quantity,model,levels,observed_order,extrapolated,gci_fine_pct\n"
+                        "lift_N@t=50,laminar-upwind-snappy,1 2 3,2,1.8,0.5\n")
+            subprocess.run([sys.executable, script, "--steady", "--model", "sst-cgrid", "--out", out]
+                           + runs, check=True, capture_output=True)
+            with open(out) as f:
+                rows = list(csv.DictReader(f))
+            self.assertEqual([r["model"] for r in rows].count("laminar-upwind-snappy"), 1)
+            mine = {r["quantity"]: r for r in rows if r["model"] == "sst-cgrid"}
+            self.assertEqual(sorted(mine), ["drag_N@t=0", "lift_N@t=0", "tip_aoa_deg@t=0",
+                                            "tip_deflection_m@t=0"])
+            for q, ext in (("tip_aoa_deg@t=0", -2.6), ("tip_deflection_m@t=0", 0.009),
+                           ("lift_N@t=0", 1.3), ("drag_N@t=0", 0.36)):
+                self.assertAlmostEqual(float(mine[q]["observed_order"]), 2.0, places=4)
+                self.assertAlmostEqual(float(mine[q]["extrapolated"]), ext, places=5)
+                self.assertEqual(mine[q]["asymptotic_range"], "yes")
+            # rerun of the same model replaces its rows, a level that did not converge is flagged
+            runs[2] = self.make_run(root, "fine-unconverged", self.CELLS[2], converged=0)
+            r = subprocess.run([sys.executable, script, "--steady", "--model", "sst-cgrid", "--out", out]
+                               + runs, capture_output=True, text=True, check=True)
+            self.assertIn("not converged", r.stderr)
+            with open(out) as f:
+                rows = list(csv.DictReader(f))
+            self.assertEqual(len(rows), 5)
+            self.assertTrue(all(r["asymptotic_range"] == "no" for r in rows if r["model"] == "sst-cgrid"))
+            # a rigid folder given to --steady: one-line error, exit 1
+            r = subprocess.run([sys.executable, script, "--steady"] + runs[:2] + [root],
+                               capture_output=True, text=True)
+            self.assertEqual(r.returncode, 1)
+            self.assertIn("results/baseline/history.csv", r.stderr)
+
+
 if __name__ == "__main__":
     unittest.main()
