@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""Checks of tools/forceConvergence.py, tools/mshinfo.py and tools/foilMotion.py on small
+"""Checks of tools/forceConvergence.py, tools/iterationBand.py, tools/mshinfo.py and tools/foilMotion.py on small
 synthetic inputs, and of tools/mapInitialFields.sh's input checks."""
 import io
 import os
@@ -14,6 +14,7 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import foilMotion  # noqa: E402
 import forceConvergence as fc  # noqa: E402
+import iterationBand  # noqa: E402
 import mshinfo  # noqa: E402
 
 
@@ -143,6 +144,56 @@ class MapInitialFields(unittest.TestCase):
             self.assertEqual(r.returncode, 2)
             self.assertIn("'%s' is not a case" % src, r.stderr)
             self.assertEqual(len(r.stderr.strip().splitlines()), 1)
+
+
+class IterationBand(unittest.TestCase):
+    def write(self, folder, name, header, rows):
+        path = os.path.join(folder, name)
+        with open(path, "w") as f:
+            f.write(header + "\n")
+            for r in rows:
+                f.write(",".join(str(v) for v in r) + "\n")
+        return path
+
+    def test_rigid_cycle(self):
+        # lift component -2 + 1e-3 sin(2 pi i / 6) after a decaying start: period 6, the band
+        # from the sampled extremes, the mean and no drift over whole periods
+        it = np.arange(1, 1201)
+        fy = -2.0 + 1e-3 * np.sin(2 * np.pi * it / 6) + 0.5 * np.exp(-it / 20.0)
+        with tempfile.TemporaryDirectory() as d:
+            path = self.write(d, "rigidIterations.csv", "iteration,Fx,Fy,Fz,residualU,residualP",
+                              [(i, 0.3, repr(v), 0.0, 1e-3, 1e-3) for i, v in zip(it, fy)])
+            s = iterationBand.band_summary(iterationBand.read_series(path, "Fy"), 300)
+            w = fy[-300:]
+            self.assertEqual(s["period"], 6)
+            self.assertEqual(s["iterations"], 1200)
+            self.assertAlmostEqual(s["mean"], np.mean(w), places=12)
+            self.assertAlmostEqual(s["band"], (w.max() - w.min()) / (2 * abs(np.mean(w))), places=12)
+            self.assertLess(abs(s["drift"]), 1e-9)  # whole periods in each half, decay gone
+            # a partial last line (a run still writing) is ignored
+            with open(path, "a") as f:
+                f.write("1201,0.3,")
+            self.assertEqual(len(iterationBand.read_series(path, "Fy")), 1200)
+
+    def test_solve_selection_and_errors(self):
+        rows = [(0, 1, k, 0.3, -2.0 - 0.1 * 0.5 ** k, 0.0, 1e-3, 1e-3) for k in range(1, 41)]
+        rows += [(0, 2, k, 0.3, -1.5 + 0.01 * (-1) ** k, 0.0, 1e-3, 1e-3) for k in range(1, 21)]
+        with tempfile.TemporaryDirectory() as d:
+            path = self.write(d, "solveIterations.csv",
+                              "step,iteration,simpleIteration,Fx,Fy,Fz,residualU,residualP", rows)
+            last = iterationBand.read_series(path, "Fy")  # default: the last SOLVE
+            self.assertEqual(len(last), 20)
+            s = iterationBand.band_summary(last, 20)
+            self.assertEqual(s["period"], 2)
+            self.assertAlmostEqual(s["band"], 0.01 / 1.5, places=12)
+            self.assertEqual(len(iterationBand.read_series(path, "Fy", 0, 1)), 40)
+            for args in (("Fq",), ("Fy", 3, 1)):
+                with self.assertRaises(SystemExit) as e:
+                    iterationBand.read_series(path, *args)
+                self.assertIn("iterationBand.py", str(e.exception))
+            with self.assertRaises(SystemExit) as e:
+                iterationBand.band_summary(last, 30)
+            self.assertIn("fewer than --last 30", str(e.exception))
 
 
 if __name__ == "__main__":
