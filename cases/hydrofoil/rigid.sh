@@ -20,7 +20,9 @@
 #                        force stayed within +-B |F| and the blocks' means differ by <= T |F|.
 #                        For classic SIMPLE, whose force wanders by ~1e-5 |F| per iteration
 #                        once converged (the estimate above, up to 49 times the change, never
-#                        holds); 0 (default): off. The loads are then the last iterate's
+#                        holds); 0 (default): off. The fields written and the loads are
+#                        then the mean flow's (fluid-app averages U, p and the turbulence
+#                        fields over the two blocks)
 #
 # Writes RUNDIR/case (the OpenFOAM case, tools/fluidCase.sh) and RUNDIR/rigid.csv, one row:
 # cells, flow, scheme, iterations, converged (in_the_mean 1: stopped by --band-tolerance, band

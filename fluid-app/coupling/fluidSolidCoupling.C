@@ -413,7 +413,12 @@ int Foam::fluidSolidCoupling::runRigid(const SteadySolver& solve)
 {
     Info<< "fsi: rigid mode (no coupling): steady solve to convergence" << nl << endl;
     openIterationLog();
-    const SolveResult r = solve(controls("rigid"));
+    const SolveControls rigid = controls("rigid");
+    if (rigid.bandTolerance > 0)
+    {
+        startFieldBlocks();   // a stop in the mean then reports the mean flow
+    }
+    const SolveResult r = solve(rigid);
     closeIterationLog();
     checkDiverged(r);
     Info<< "fsi: rigid solve: " << r.iterations << " SIMPLE iterations, residuals U "
@@ -421,8 +426,7 @@ int Foam::fluidSolidCoupling::runRigid(const SteadySolver& solve)
         << (r.converged ? " (converged)" : " (iteration cap reached)") << endl;
     if (r.inTheMean)
     {
-        Info<< "fsi: the loads below are the last iterate's, within +-" << r.band
-            << " of the mean force" << endl;
+        useMeanFields();
     }
     vector total(Zero), pressure(Zero);
     reportForces("rigid", &total, &pressure);

@@ -4,6 +4,7 @@
 #include "fluidSolidCoupling.H"
 
 #include "forces.H"
+#include "calculatedFvPatchField.H"
 
 Foam::tmp<Foam::vectorField> Foam::fluidSolidCoupling::faceForces
 (
@@ -45,8 +46,140 @@ Foam::vector Foam::fluidSolidCoupling::addToForceBlocks
         currentBlockForces_ = vectorField(f().size(), Zero);
         blockLength_ = blockLength;
     }
-    currentBlockForces_ += fsi::fluid::SteadyConvergence::blockWeight(iteration, blockLength)*f();
+    const scalar w = fsi::fluid::SteadyConvergence::blockWeight(iteration, blockLength);
+    currentBlockForces_ += w*f();
+    if (sumFields_)
+    {
+        addToFieldBlocks(iteration, blockLength, w);
+    }
     return gSum(f());
+}
+
+
+namespace
+{
+// A zero field shaped like `field`, calculated patches (constraint patches keep their type),
+// not registered: a plain sum.
+template<class Type>
+Foam::autoPtr<Foam::GeometricField<Type, Foam::fvPatchField, Foam::volMesh>> zeroSum
+(
+    const Foam::GeometricField<Type, Foam::fvPatchField, Foam::volMesh>& field
+)
+{
+    using namespace Foam;
+    return autoPtr<GeometricField<Type, fvPatchField, volMesh>>::New
+    (
+        IOobject(field.name() + "BlockSum", field.time().timeName(), field.mesh(),
+                 IOobject::NO_READ, IOobject::NO_WRITE, false),
+        field.mesh(),
+        dimensioned<Type>(field.dimensions(), Zero),
+        calculatedFvPatchField<Type>::typeName
+    );
+}
+
+// sum += w field, internal and boundary values
+template<class Type>
+void addWeighted
+(
+    Foam::GeometricField<Type, Foam::fvPatchField, Foam::volMesh>& sum,
+    const Foam::GeometricField<Type, Foam::fvPatchField, Foam::volMesh>& field,
+    const Foam::scalar w
+)
+{
+    sum.primitiveFieldRef() += w*field.primitiveField();
+    forAll(sum.boundaryField(), patchi)
+    {
+        Foam::Field<Type>& b = sum.boundaryFieldRef()[patchi];
+        b += w*field.boundaryField()[patchi];
+    }
+}
+
+// field = (previous + current) / n, boundary values included (no evaluation)
+template<class Type>
+void assignMean
+(
+    Foam::GeometricField<Type, Foam::fvPatchField, Foam::volMesh>& field,
+    const Foam::GeometricField<Type, Foam::fvPatchField, Foam::volMesh>& previous,
+    const Foam::GeometricField<Type, Foam::fvPatchField, Foam::volMesh>& current,
+    const Foam::scalar n
+)
+{
+    field.primitiveFieldRef() = (previous.primitiveField() + current.primitiveField())/n;
+    forAll(field.boundaryField(), patchi)
+    {
+        field.boundaryFieldRef()[patchi] ==
+            (previous.boundaryField()[patchi] + current.boundaryField()[patchi])/n;
+    }
+}
+} // namespace
+
+
+void Foam::fluidSolidCoupling::startFieldBlocks()
+{
+    sumFields_ = true;
+    scalarFields_.clear();
+    scalarFields_.append(&p_);
+    for (const word name : {"k", "omega", "nut", "nuTilda", "epsilon", "ReThetat", "gammaInt"})
+    {
+        if (mesh_.foundObject<volScalarField>(name))
+        {
+            scalarFields_.append(&mesh_.lookupObjectRef<volScalarField>(name));
+        }
+    }
+    currentScalarSums_.clear();
+    previousScalarSums_.clear();
+    currentUSum_.reset(nullptr);
+    previousUSum_.reset(nullptr);
+}
+
+
+void Foam::fluidSolidCoupling::addToFieldBlocks
+(
+    const label iteration,
+    const label blockLength,
+    const scalar w
+)
+{
+    if ((iteration - 1) % blockLength == 0)
+    {
+        // a new block: the one just completed becomes the previous one
+        previousUSum_ = std::move(currentUSum_);
+        currentUSum_ = zeroSum(U_);
+        previousScalarSums_.transfer(currentScalarSums_);
+        currentScalarSums_.setSize(scalarFields_.size());
+        forAll(scalarFields_, i)
+        {
+            currentScalarSums_.set(i, zeroSum(*scalarFields_[i]).ptr());
+        }
+    }
+    addWeighted(currentUSum_(), U_, w);
+    forAll(scalarFields_, i)
+    {
+        addWeighted(currentScalarSums_[i], *scalarFields_[i], w);
+    }
+}
+
+
+void Foam::fluidSolidCoupling::useMeanFields()
+{
+    if (!sumFields_ || !previousUSum_.valid() || !currentUSum_.valid()
+     || previousScalarSums_.size() != scalarFields_.size())
+    {
+        FatalErrorInFunction
+            << "fsi: no two complete blocks of field sums: the band rule stopped before its "
+            << "second block ended (a bug)" << exit(FatalError);
+    }
+    const scalar n = scalar(blockLength_);   // weights: n/2 per block
+    assignMean(U_, previousUSum_(), currentUSum_(), n);
+    wordList names(1, U_.name());
+    forAll(scalarFields_, i)
+    {
+        assignMean(*scalarFields_[i], previousScalarSums_[i], currentScalarSums_[i], n);
+        names.append(scalarFields_[i]->name());
+    }
+    Info<< "fsi: converged in the mean: the fields " << names << " are now the weighted mean of "
+        << "the last " << 2*blockLength_ << " iterations; the loads below are the mean flow's"
+        << endl;
 }
 
 

@@ -31,7 +31,9 @@
 #                 means within the 1e-5 tolerance): classic SIMPLE's force keeps wandering once
 #                 converged (coarse: ~5e-6 |F| per iteration, band 1.5e-5; medium: a period-6
 #                 oscillation of +-6.4e-4 in lift), which the 1e-5 error estimate (up to 49
-#                 times the change) never accepts; the loads are the last iterate's. 0: off
+#                 times the change) never accepts; the loads are then the mean flow's (fluid-app
+#                 averages the fields over the two blocks; until 2026-12-04 the last iterate's,
+#                 as in the tracked study). 0: off
 #   H3D_RUNS      run folders (default $FSI_VERIFY_DIR/runs, not tracked)
 #   H3D_REUSE=1   keep a level whose RUN/rigid/rigid.csv exists instead of redoing it
 #   H3D_SEQUENCE  1 (default): every level starts from the next coarser level's flow

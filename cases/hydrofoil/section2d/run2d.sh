@@ -25,8 +25,9 @@
 #                     grid sequencing, fewer iterations; the stopping test is unchanged
 #   --algorithm simple  classic SIMPLE instead of the case's SIMPLEC (tools/setFlow.sh)
 #   --band-tolerance B  the solve may also stop in the mean (fsiDict rigid.bandTolerance, blocks
-#                     of 100 iterations; ../rigid.sh): for classic SIMPLE's force wander; 0
-#                     (default): off
+#                     of 100 iterations; ../rigid.sh): for classic SIMPLE's force wander or a
+#                     SIMPLEC limit cycle; C_L, C_D, C_M and y+ are then the mean flow's (fluid-app
+#                     averages the fields over the two blocks); 0 (default): off
 # Writes DIR/mesh (the C-grid as MSH 2.2 and its parameters), DIR/case (OpenFOAM case, fields for ParaView in the last
 # time folder, postProcessing/forcesFinal and yPlus) and DIR/section2d.csv (one row: level,
 # cells, flow, scheme, iterations, converged, C_L, C_D, C_M, y+ max / mean on the foil, CPU and
