@@ -34,6 +34,9 @@
 #   H2D_BAND       run2d.sh --band-tolerance (default 0: off). Classic SIMPLE on level 0 kept a
 #                  period-8 oscillation of +-3.4e-4 in C_L (case README, "Flow models"), so a
 #                  band below that never fires there
+#   H2D_BAND_WINDOW  run2d.sh --band-window: the band rule's block length (default 100); a
+#                  space-separated list gives one per level of H2D_LEVELS (e.g. "100 100 100
+#                  1000": level 3's SIMPLEC cycle has a period of ~420 iterations)
 #   H2D_RUNS       run folders (default $FSI_VERIFY_DIR/runs, not tracked)
 #   H2D_REUSE=1    keep finished runs (RUN/section2d.csv) instead of redoing them
 # gci.csv has one row per quantity for every three consecutive levels (coarse to fine), so
@@ -51,6 +54,10 @@ reuse=${H2D_REUSE:-0}
 algorithm=${H2D_ALGORITHM:-simplec}
 case "$algorithm" in simple|simplec) ;; *) echo "error: hydrofoil-2d: H2D_ALGORITHM='$algorithm' must be simple or simplec" >&2; exit 2 ;; esac
 solverArgs=(--band-tolerance "${H2D_BAND:-0}") suffix=""
+bandWindows=(${H2D_BAND_WINDOW:-100})
+nLevels=$(echo $levels | wc -w)
+[ ${#bandWindows[@]} = 1 ] || [ ${#bandWindows[@]} = "$nLevels" ] ||
+    { echo "error: hydrofoil-2d: H2D_BAND_WINDOW='${H2D_BAND_WINDOW}' needs one value or one per level of H2D_LEVELS ($nLevels)" >&2; exit 2; }
 [ "$algorithm" = simplec ] || { solverArgs+=(--algorithm "$algorithm"); suffix=-$algorithm; }
 mkdir -p "$runs"
 
@@ -61,6 +68,18 @@ if [ -n "${H2D_INLET:-}" ]; then
     inlet=(--tu "$1" --length-scale "$2")
 fi
 
+# the band window of a level: the list's entry at the level's position in H2D_LEVELS (one
+# entry: every level; the evidence runs, not in the list: the first entry)
+bandWindowOf() {
+    local i=0 l
+    [ ${#bandWindows[@]} = 1 ] && { echo "${bandWindows[0]}"; return; }
+    for l in $levels; do
+        [ "$l" = "$1" ] && { echo "${bandWindows[$i]:-${bandWindows[0]}}"; return; }
+        i=$((i + 1))
+    done
+    echo "${bandWindows[0]}"
+}
+
 # one solve: run2d.sh into RUN unless reusable; echo its CSV row prefixed by te and h
 solve() {  # model level te maxIterations [initFromRun]
     local r=$runs/$1-$3-L$2$suffix init=()
@@ -70,7 +89,8 @@ solve() {  # model level te maxIterations [initFromRun]
     else
         echo "hydrofoil-2d: $1 level $2 te $3 ($(date +%H:%M:%S), load $(cut -d' ' -f1 /proc/loadavg))" >&2
         "$run2d" --out "$r" --level "$2" --flow "$1" --te "$3" --max-iterations "$4" \
-            --tolerance "${H2D_TOLERANCE:-1e-5}" "${solverArgs[@]}" ${inlet[@]+"${inlet[@]}"} \
+            --tolerance "${H2D_TOLERANCE:-1e-5}" "${solverArgs[@]}" --band-window "$(bandWindowOf "$2")" \
+            ${inlet[@]+"${inlet[@]}"} \
             ${init[@]+"${init[@]}"} > "$r.log" 2>&1 ||
             { tail -5 "$r.log" >&2; echo "error: hydrofoil-2d: $1 level $2 failed (see $r.log)" >&2; exit 1; }
     fi

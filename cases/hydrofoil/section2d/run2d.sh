@@ -7,7 +7,7 @@
 #   cases/hydrofoil/section2d/run2d.sh --out DIR [--level K] [--flow laminar|transition|turbulent]
 #       [--scheme upwind|linearUpwind] [--tolerance 1e-6] [--max-iterations 6000] [--mesh-only]
 #       [--tc 0.12] [--cli 0.5] [--tu 0.01] [--length-scale 0.001] [--init-from RUN]
-#       [--algorithm simple] [--band-tolerance B]
+#       [--algorithm simple] [--band-tolerance B] [--band-window N]
 #
 #   --level K         mesh level (0 coarsest; every level refines all lengths by sqrt 2)
 #   --level-along K, --level-across K  refine along the foil and the wake (n_side, n_te,
@@ -28,6 +28,9 @@
 #                     of 100 iterations; ../rigid.sh): for classic SIMPLE's force wander or a
 #                     SIMPLEC limit cycle; C_L, C_D, C_M and y+ are then the mean flow's (fluid-app
 #                     averages the fields over the two blocks); 0 (default): off
+#   --band-window N   the band rule's block length (fsiDict rigid.bandWindow; default 100): at
+#                     least one period of the slowest oscillation, so that two blocks' means
+#                     agree (level 3's SIMPLEC cycle has a period of ~420 iterations: 1000)
 # Writes DIR/mesh (the C-grid as MSH 2.2 and its parameters), DIR/case (OpenFOAM case, fields for ParaView in the last
 # time folder, postProcessing/forcesFinal and yPlus) and DIR/section2d.csv (one row: level,
 # cells, flow, scheme, iterations, converged, C_L, C_D, C_M, y+ max / mean on the foil, CPU and
@@ -43,7 +46,7 @@
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 out="" level=0 flow=laminar scheme=linearUpwind tol=1e-6 maxIt=6000 meshOnly=0 tc=0.12 cli=0.5 te=blunt
-tu="" lscale="" initFrom="" levelArgs=() algorithm="" band=0
+tu="" lscale="" initFrom="" levelArgs=() algorithm="" band=0 bandWindow=100
 die() { echo "error: section2d/run2d.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
     case "$1" in
@@ -65,6 +68,7 @@ while [ $# -gt 0 ]; do
         --init-from) initFrom="$2"; shift 2 ;;
         --algorithm) algorithm="$2"; shift 2 ;;
         --band-tolerance) band="$2"; shift 2 ;;
+        --band-window) bandWindow="$2"; shift 2 ;;
         -h|--help) sed -n '3,40p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) die "unknown option '$1' (see --help)" ;;
     esac
@@ -74,6 +78,10 @@ done
 "$here/../tools/setFlow.sh" --check-only --flow "$flow" --scheme "$scheme" ${algorithm:+--algorithm "$algorithm"}
 awk -v b="$band" 'BEGIN{exit !(b ~ /^[0-9.eE+-]+$/ && b + 0 >= 0 && b + 0 < 1)}' ||
     die "--band-tolerance '$band' must be 0 (off) or in (0, 1)"
+[[ "$bandWindow" =~ ^[1-9][0-9]*$ ]] && [ "$bandWindow" -ge 10 ] ||
+    die "--band-window '$bandWindow' must be an integer >= 10"
+[ $((2 * bandWindow)) -le "$maxIt" ] || awk -v b="$band" 'BEGIN{exit !(b + 0 == 0)}' ||
+    die "--band-window $bandWindow needs --max-iterations >= $((2 * bandWindow)) (two blocks)"
 if [ -n "$tu$lscale" ]; then
     [ -n "$tu" ] && [ -n "$lscale" ] || die "--tu and --length-scale go together"
     [[ "$tu" =~ ^(0?\.[0-9]+|[0-9]\.?[0-9]*[eE]-[0-9]+)$ ]] && [[ "$lscale" =~ ^(0?\.[0-9]+|[0-9]\.?[0-9]*[eE]-[0-9]+)$ ]] \
@@ -144,7 +152,7 @@ fd system/fsiDict rigid/estimateForceError true
 fd system/fsiDict rigid/minIterations 100
 fd system/fsiDict rigid/stableIterations 100   # a pause of a slow oscillation does not stop it
 fd system/fsiDict rigid/bandTolerance "$band"
-fd system/fsiDict rigid/bandWindow 100
+fd system/fsiDict rigid/bandWindow "$bandWindow"
 fd system/controlDict endTime "$maxIt"
 fd system/controlDict writeInterval "$maxIt"
 fd system/controlDict functions/forces/CofR "(0.3685 0 0)"
