@@ -38,6 +38,20 @@
 #                                           on the same or another mesh), mapped onto this
 #                                           mesh (tools/mapInitialFields.sh): level 0 then
 #                                           starts from the rigid flow instead of from rest
+#   --band-tolerance B                      accept a fluid solve "in the mean" when its force stays
+#                                           within +-B |F| over two blocks of 100 iterations (fsiDict
+#                                           coupled/bandTolerance; default: the case's 2e-3). For flows
+#                                           without a steady state, e.g. second order on the
+#                                           boundary-layer mesh (+-1 % at the root junction): README,
+#                                           "Second order inside the coupled loop"
+#   --band-window N                         iterations per block of that rule (fsiDict coupled/
+#                                           bandWindow; default the case's 100; 2 N <= the cap)
+#   --fluid-tolerance F                     the fluid's final and largest force accuracy (the solid
+#                                           configs' coupling.fluid_accuracy final.force_tolerance and
+#                                           max_force_tolerance; default 5e-5). A flow accepted in
+#                                           the mean needs F of its block means' wander (e.g. 3e-3)
+#   --max-fluid-iterations N                cap on the SIMPLE iterations of one coupled fluid solve
+#                                           (fsiDict coupled/maxIterations; default the case's 400)
 #   --restart                               continue an interrupted run in this folder (same
 #                                           options): finished runs are kept, an interrupted one
 #                                           continues from results/<run>/checkpoint/latest
@@ -52,7 +66,7 @@ set -euo pipefail
 source "$FSI_ROOT/scripts/env.sh"
 
 preset=coarse material=both npf=2 nps=2 launch=mpmd tc=0.12 cli=0.5 end="" timeout=900 meshFrom="" restart=0
-flow=laminar scheme=upwind algorithm="" fluidMesh=snappy initFrom=""
+flow=laminar scheme=upwind algorithm="" fluidMesh=snappy initFrom="" band="" maxFluidIt="" fluidTol="" bandWindow=""
 die() { echo "error: hydrofoil/run.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -71,8 +85,12 @@ while [ $# -gt 0 ]; do
     --algorithm) algorithm=$2; shift 2 ;;
     --fluid-mesh) fluidMesh=$2; shift 2 ;;
     --init-from) [ $# -ge 2 ] || die "--init-from needs an OpenFOAM case folder"; initFrom=$2; shift 2 ;;
+    --band-tolerance) [ $# -ge 2 ] || die "--band-tolerance needs a value"; band=$2; shift 2 ;;
+    --band-window) [ $# -ge 2 ] || die "--band-window needs a value"; bandWindow=$2; shift 2 ;;
+    --fluid-tolerance) [ $# -ge 2 ] || die "--fluid-tolerance needs a value"; fluidTol=$2; shift 2 ;;
+    --max-fluid-iterations) [ $# -ge 2 ] || die "--max-fluid-iterations needs a value"; maxFluidIt=$2; shift 2 ;;
     --restart) restart=1; shift ;;
-    -h|--help) sed -n '3,40p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '3,63p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) die "unknown option '$1' (see --help)" ;;
   esac
 done
@@ -81,6 +99,23 @@ case "$launch" in mpmd|port) ;; *) die "--launch must be mpmd or port" ;; esac
 "$FSI_ROOT/cases/hydrofoil/tools/setFlow.sh" --check-only --flow "$flow" --scheme "$scheme" \
     ${algorithm:+--algorithm "$algorithm"}
 case "$fluidMesh" in snappy|cgrid) ;; *) die "--fluid-mesh must be snappy or cgrid" ;; esac
+[ -z "$band" ] || awk -v b="$band" 'BEGIN{exit !(b ~ /^[0-9.eE+-]+$/ && b + 0 > 0 && b + 0 < 1)}' ||
+    die "--band-tolerance '$band' must be a number in (0, 1), e.g. 1e-2"
+[ -z "$fluidTol" ] || awk -v f="$fluidTol" 'BEGIN{exit !(f ~ /^[0-9.eE+-]+$/ && f + 0 > 0 && f + 0 < 1)}' ||
+    die "--fluid-tolerance '$fluidTol' must be a number in (0, 1), e.g. 3e-3"
+if [ -n "$fluidTol" ]; then
+  for y in solid/baseline.yaml solid/relaxed.yaml solid/viscoelastic.yaml; do
+    grep -q '^    final: {force_tolerance: ' "$y" && grep -q '^    max_force_tolerance: ' "$y" ||
+        die "--fluid-tolerance: $y has no 'final: {force_tolerance: ...}' / 'max_force_tolerance:' line under coupling.fluid_accuracy (restore it from cases/hydrofoil/solid)"
+  done
+fi
+[ -z "$maxFluidIt" ] || { [[ "$maxFluidIt" =~ ^[1-9][0-9]*$ ]] && [ "$maxFluidIt" -ge 200 ]; } ||
+    die "--max-fluid-iterations '$maxFluidIt' must be an integer >= 200 (the band rule's two blocks of 100)"
+if [ -n "$bandWindow" ]; then
+  cap=${maxFluidIt:-$(foamDictionary fluid/system/fsiDict -entry coupled/maxIterations -value 2> /dev/null || echo 400)}
+  { [[ "$bandWindow" =~ ^[1-9][0-9]*$ ]] && [ "$bandWindow" -ge 10 ] && [ $((2 * bandWindow)) -le "$cap" ]; } ||
+      die "--band-window '$bandWindow' must be an integer >= 10 with 2 x it <= the fluid cap $cap (--max-fluid-iterations)"
+fi
 [[ "$npf" =~ ^[1-9][0-9]*$ && "$nps" =~ ^[1-9][0-9]*$ ]] || die "--np-fluid/--np-solid must be positive integers"
 if [ -n "$initFrom" ]; then
   [ -d "$initFrom/constant/polyMesh" ] || die "--init-from $initFrom: not an OpenFOAM case (no constant/polyMesh)"
@@ -135,11 +170,17 @@ for m in "${runs[@]}"; do
     # the mesh's fluid case with this case's settings, flow model and scheme, decomposed
     "$run/tools/fluidCase.sh" "$fluid" "$run/mesh/fluid" "$npf" --flow "$flow" --scheme "$scheme" \
         ${algorithm:+--algorithm "$algorithm"} ${initFrom:+--init-from "$initFrom"}
+    [ -z "$band" ] || foamDictionary "$fluid/system/fsiDict" -entry coupled/bandTolerance -set "$band" > /dev/null
+    [ -z "$maxFluidIt" ] || foamDictionary "$fluid/system/fsiDict" -entry coupled/maxIterations -set "$maxFluidIt" > /dev/null
+    [ -z "$bandWindow" ] || foamDictionary "$fluid/system/fsiDict" -entry coupled/bandWindow -set "$bandWindow" > /dev/null
   fi
   parallel=""
   [ "$npf" -gt 1 ] && parallel=-parallel
   cfg=$run/$m.yaml
   sed "s|@MESH@|$solidMesh|" "$run/solid/$m.yaml" > "$cfg"
+  if [ -n "$fluidTol" ]; then
+    sed -i "s/^\(    final: {force_tolerance:\) *[^}]*}/\1 $fluidTol}/; s/^\(    max_force_tolerance:\) *[0-9.eE+-]*/\1 $fluidTol/" "$cfg"
+  fi
   if [ -n "$end" ] && [ "$m" = viscoelastic ]; then
     sed -i "s|^    end: .*|    end: $end|; s|^    hit: .*|    hit: []|" "$cfg"
   fi

@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# tests/cases/hydrofoil/test_run_options.sh WORK
+#
+# run.sh refuses bad values of --band-tolerance, --band-window, --fluid-tolerance and
+# --max-fluid-iterations before it writes
+# anything: exit 2, one line on stderr naming the option, no mesh/ or results/ in the run
+# folder. Needs FSI_ROOT (the repository); no OpenFOAM run, no MPI.
+set -uo pipefail
+work=${1:?usage: test_run_options.sh WORK}
+: "${FSI_ROOT:?set FSI_ROOT to the repository}"
+fail=0
+check() {   # check OPTION VALUE
+  local dir=$work/run
+  rm -rf "$dir"; mkdir -p "$dir"; cp -r "$FSI_ROOT/cases/hydrofoil/." "$dir/"
+  local rc=0
+  (cd "$dir" && ./run.sh --material baseline "$1" "$2" > out.txt 2> err.txt) || rc=$?
+  local lines; lines=$(wc -l < "$dir/err.txt")
+  if [ "$rc" -ne 2 ]; then
+    echo "FAIL: $1 $2: exit $rc, expected 2"; fail=1
+  elif [ "$lines" -ne 1 ] || ! grep -q -- "$1" "$dir/err.txt"; then
+    echo "FAIL: $1 $2: expected one line naming $1, got:"; cat "$dir/err.txt"; fail=1
+  elif [ -e "$dir/mesh" ] || [ -e "$dir/results" ]; then
+    echo "FAIL: $1 $2: wrote mesh/ or results/ before refusing"; fail=1
+  else
+    echo "ok: $1 $2 -> $(cat "$dir/err.txt")"
+  fi
+}
+check --band-tolerance 0
+check --band-tolerance 1.5
+check --band-tolerance abc
+check --max-fluid-iterations 150
+check --max-fluid-iterations 4e2
+check --fluid-tolerance 0
+check --fluid-tolerance 2
+check --band-window 5
+check --band-window 300   # 2 x 300 > the case's cap of 400
+exit $fail
