@@ -44,12 +44,16 @@
 #                                           without a steady state, e.g. second order on the
 #                                           boundary-layer mesh (+-1 % at the root junction): README,
 #                                           "Second order inside the coupled loop"
+#   --band-mean-tolerance M                 ... and when the two blocks' means differ by <= M |F| (fsiDict
+#                                           coupled/bandMeanTolerance; default 0: the fluid accuracy
+#                                           asked, 5e-5). For a mean that wanders by ~1e-3 between
+#                                           blocks; keep --fluid-tolerance tight, a loose one lets
+#                                           the steady error estimate stop on the oscillation
 #   --band-window N                         iterations per block of that rule (fsiDict coupled/
 #                                           bandWindow; default the case's 100; 2 N <= the cap)
 #   --fluid-tolerance F                     the fluid's final and largest force accuracy (the solid
 #                                           configs' coupling.fluid_accuracy final.force_tolerance and
-#                                           max_force_tolerance; default 5e-5). A flow accepted in
-#                                           the mean needs F of its block means' wander (e.g. 3e-3)
+#                                           max_force_tolerance; default 5e-5)
 #   --max-fluid-iterations N                cap on the SIMPLE iterations of one coupled fluid solve
 #                                           (fsiDict coupled/maxIterations; default the case's 400)
 #   --restart                               continue an interrupted run in this folder (same
@@ -66,7 +70,7 @@ set -euo pipefail
 source "$FSI_ROOT/scripts/env.sh"
 
 preset=coarse material=both npf=2 nps=2 launch=mpmd tc=0.12 cli=0.5 end="" timeout=900 meshFrom="" restart=0
-flow=laminar scheme=upwind algorithm="" fluidMesh=snappy initFrom="" band="" maxFluidIt="" fluidTol="" bandWindow=""
+flow=laminar scheme=upwind algorithm="" fluidMesh=snappy initFrom="" band="" maxFluidIt="" fluidTol="" bandWindow="" bandMean=""
 die() { echo "error: hydrofoil/run.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -86,11 +90,12 @@ while [ $# -gt 0 ]; do
     --fluid-mesh) fluidMesh=$2; shift 2 ;;
     --init-from) [ $# -ge 2 ] || die "--init-from needs an OpenFOAM case folder"; initFrom=$2; shift 2 ;;
     --band-tolerance) [ $# -ge 2 ] || die "--band-tolerance needs a value"; band=$2; shift 2 ;;
+    --band-mean-tolerance) [ $# -ge 2 ] || die "--band-mean-tolerance needs a value"; bandMean=$2; shift 2 ;;
     --band-window) [ $# -ge 2 ] || die "--band-window needs a value"; bandWindow=$2; shift 2 ;;
     --fluid-tolerance) [ $# -ge 2 ] || die "--fluid-tolerance needs a value"; fluidTol=$2; shift 2 ;;
     --max-fluid-iterations) [ $# -ge 2 ] || die "--max-fluid-iterations needs a value"; maxFluidIt=$2; shift 2 ;;
     --restart) restart=1; shift ;;
-    -h|--help) sed -n '3,63p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '3,68p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) die "unknown option '$1' (see --help)" ;;
   esac
 done
@@ -101,6 +106,8 @@ case "$launch" in mpmd|port) ;; *) die "--launch must be mpmd or port" ;; esac
 case "$fluidMesh" in snappy|cgrid) ;; *) die "--fluid-mesh must be snappy or cgrid" ;; esac
 [ -z "$band" ] || awk -v b="$band" 'BEGIN{exit !(b ~ /^[0-9.eE+-]+$/ && b + 0 > 0 && b + 0 < 1)}' ||
     die "--band-tolerance '$band' must be a number in (0, 1), e.g. 1e-2"
+[ -z "$bandMean" ] || awk -v b="$bandMean" 'BEGIN{exit !(b ~ /^[0-9.eE+-]+$/ && b + 0 > 0 && b + 0 < 1)}' ||
+    die "--band-mean-tolerance '$bandMean' must be a number in (0, 1), e.g. 3e-3"
 [ -z "$fluidTol" ] || awk -v f="$fluidTol" 'BEGIN{exit !(f ~ /^[0-9.eE+-]+$/ && f + 0 > 0 && f + 0 < 1)}' ||
     die "--fluid-tolerance '$fluidTol' must be a number in (0, 1), e.g. 3e-3"
 if [ -n "$fluidTol" ]; then
@@ -172,6 +179,7 @@ for m in "${runs[@]}"; do
         ${algorithm:+--algorithm "$algorithm"} ${initFrom:+--init-from "$initFrom"}
     [ -z "$band" ] || foamDictionary "$fluid/system/fsiDict" -entry coupled/bandTolerance -set "$band" > /dev/null
     [ -z "$maxFluidIt" ] || foamDictionary "$fluid/system/fsiDict" -entry coupled/maxIterations -set "$maxFluidIt" > /dev/null
+    [ -z "$bandMean" ] || foamDictionary "$fluid/system/fsiDict" -entry coupled/bandMeanTolerance -set "$bandMean" > /dev/null
     [ -z "$bandWindow" ] || foamDictionary "$fluid/system/fsiDict" -entry coupled/bandWindow -set "$bandWindow" > /dev/null
   fi
   parallel=""

@@ -310,6 +310,14 @@ Foam::fluidSolidCoupling::SolveControls Foam::fluidSolidCoupling::controls
     c.oscillationWindow = d.getOrDefault<label>("oscillationWindow", 0);
     c.bandTolerance = d.getOrDefault<scalar>("bandTolerance", 0);
     c.bandWindow = d.getOrDefault<label>("bandWindow", 100);
+    c.bandMeanTolerance = d.getOrDefault<scalar>("bandMeanTolerance", 0);
+    if (c.bandMeanTolerance < 0 || c.bandMeanTolerance >= 1)
+    {
+        FatalIOErrorInFunction(dict_)
+            << "system/fsiDict: " << subDictName << ".bandMeanTolerance "
+            << c.bandMeanTolerance << " is invalid: 0 (off: the asked force tolerance) or in"
+            << " (0, 1) (relative change of the mean between two blocks)" << exit(FatalIOError);
+    }
     if
     (
         c.bandTolerance < 0 || c.bandTolerance >= 1
@@ -376,9 +384,10 @@ Foam::fluidSolidCoupling::SolveControls Foam::fluidSolidCoupling::askedControls
     c.stableIterations = own.stableIterations;
     c.oscillationWindow = own.oscillationWindow;
     // and its rule for a flow without a steady state (the mean's change bounded by the asked
-    // tolerance)
+    // tolerance, or by the fluid's own bandMeanTolerance where that is larger)
     c.bandTolerance = own.bandTolerance;
     c.bandWindow = own.bandWindow;
+    c.bandMeanTolerance = own.bandMeanTolerance;
     return c;
 }
 

@@ -76,7 +76,8 @@ bool SteadyConvergence::meanMet(int iteration, const double force[3])
         const double magMean = std::sqrt(mean2);
         band_ = magMean > 0 ? std::sqrt(band2) / magMean : HUGE_VAL;
         meanChange_ = magMean > 0 ? std::sqrt(change2) / magMean : HUGE_VAL;
-        met = band_ <= controls_.bandTolerance && meanChange_ <= controls_.forceTolerance;
+        met = band_ <= controls_.bandTolerance &&
+              meanChange_ <= std::max(controls_.forceTolerance, controls_.bandMeanTolerance);
     }
     previous_ = current_;
     current_ = ForceBlock();

@@ -490,6 +490,10 @@ def t_bad_case(a):
     rc, log = run([a.fluid_app, "-rigid", "-case", d], os.path.join(d, "log.rigid-band"))
     check(rc != 0 and "system/fsiDict: rigid.bandTolerance 0.002 / bandWindow 5 are invalid" in log,
           "rigid.bandWindow 5: exit %d, message names the rigid key and the bound" % rc)
+    open(fsi, "w").write(good + "\ncoupled { forceTolerance 1e-4; bandTolerance 2e-3; bandMeanTolerance 1.5; }\n")
+    rc, log = run([a.fluid_app, "-rigid", "-case", d], os.path.join(d, "log.bad-band-mean"))
+    check(rc != 0 and "system/fsiDict: coupled.bandMeanTolerance 1.5 is invalid" in log,
+          "coupled.bandMeanTolerance 1.5: exit %d, message names the key and the range" % rc)
     # The run mode is resolved once, before OpenFOAM starts (fluid-app/coupling/runMode.H).
     open(fsi, "w").write(good + "\nmode rigd;\n")
     rc, log = run([a.fluid_app, "-case", d], os.path.join(d, "log.bad-mode"))

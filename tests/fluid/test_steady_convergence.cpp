@@ -293,6 +293,33 @@ TEST(SteadyConvergence, BandRuleRefusesADriftingMean)
     EXPECT_EQ(runUnsteady(drivenControls(2e-3), f, 400).iteration, 200); // the same without it
 }
 
+// bandMeanTolerance loosens the blocks' means only: the drifting mean above (1.9e-4 of |F|
+// between blocks) is accepted under a floor of 3e-4 and refused under 1e-4, while the steady
+// test keeps the asked 5e-5 (a converging solve stops where it stops without the floor).
+TEST(SteadyConvergence, BandMeanToleranceLoosensOnlyTheMeanTest)
+{
+    UnsteadyForce f;
+    f.drift = 2e-6 * f.f0;
+    SolveControls c = drivenControls(2e-3);
+    c.bandMeanTolerance = 1e-4;
+    EXPECT_EQ(runUnsteady(c, f, 400).iteration, 0);
+    c.bandMeanTolerance = 3e-4;
+    const BandStop stop = runUnsteady(c, f, 400);
+    EXPECT_EQ(stop.iteration, 200);
+    EXPECT_TRUE(stop.inTheMean);
+    EXPECT_GT(stop.meanChange, 5e-5);
+    EXPECT_LE(stop.meanChange, 3e-4);
+
+    c.oscillationWindow = 0;
+    auto one = [](int) { return 1.0; };
+    auto geometric = [](int k) { return 10.0 + std::pow(0.5, k); };
+    c.bandMeanTolerance = 3e-3;
+    const int withFloor = stopIteration(c, 0, 0, one, geometric, 400);
+    c.bandMeanTolerance = 0;
+    EXPECT_EQ(withFloor, stopIteration(c, 0, 0, one, geometric, 400));
+    EXPECT_GT(withFloor, 2); // not stopped by the looser floor
+}
+
 // A converging solve stops where it did without the rule (the blocks only add a way out).
 TEST(SteadyConvergence, BandRuleLeavesConvergingSolvesAlone)
 {
