@@ -3,9 +3,9 @@
 # tests/cases/hydrofoil/test_run_options.sh WORK
 #
 # run.sh refuses bad values of --band-tolerance, --band-mean-tolerance, --band-window,
-# --fluid-tolerance and --max-fluid-iterations before it writes anything: exit 2, one line on
-# stderr naming the option, no mesh/ or results/ in the run folder. Needs FSI_ROOT (the
-# repository); no OpenFOAM run, no MPI.
+# --oscillation-window, --fluid-tolerance and --max-fluid-iterations before it writes anything:
+# exit 2, one line on stderr naming the option, no mesh/ or results/ in the run folder. Needs
+# FSI_ROOT (the repository); no OpenFOAM run, no MPI.
 set -uo pipefail
 work=${1:?usage: test_run_options.sh WORK}
 : "${FSI_ROOT:?set FSI_ROOT to the repository}"
@@ -34,6 +34,7 @@ check --max-fluid-iterations 4e2
 check --fluid-tolerance 0
 check --fluid-tolerance 2
 check --band-mean-tolerance -1e-3
+check --oscillation-window 2
 check --band-window 5
 check --band-window 300   # 2 x 300 > the case's cap of 400
 exit $fail
