@@ -88,14 +88,16 @@ void Foam::fluidSolidCoupling::logAccepted(const fsi::fluid::Command& accept) co
 {
     if (Pstream::master())
     {
-        OFstream
+        OFstream os
         (
             logDir()/"accepted.csv",
             IOstream::ASCII,
             IOstream::currentVersion,
             IOstream::UNCOMPRESSED,
             true
-        )() << accept.step << ',' << accept.time << ',' << Time::timeName(accept.time) << endl;
+        );
+        os.precision(17);   // the solid checkpoint's time, matched by scripts/fsi-restart-fluid
+        os << accept.step << ',' << accept.time << ',' << Time::timeName(accept.time) << endl;
     }
 }
 
