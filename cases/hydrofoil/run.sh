@@ -49,6 +49,11 @@
 #                                           asked, 5e-5). For a mean that wanders by ~1e-3 between
 #                                           blocks; keep --fluid-tolerance tight, a loose one lets
 #                                           the steady error estimate stop on the oscillation
+#   --band-reference-force F                the band and the means are measured against max(|Fm|, F)
+#                                           [N] instead of |Fm| (fsiDict coupled/bandReferenceForce;
+#                                           default 0: |Fm|). For a history whose lift passes through
+#                                           zero while the oscillation keeps its size: F = the t = 0
+#                                           lift, e.g. 1 (README, "Second order inside the coupled loop")
 #   --band-window N                         iterations per block of that rule (fsiDict coupled/
 #                                           bandWindow; default the case's 100; 2 N <= the cap)
 #   --oscillation-window N                  honest coupled solves: the force-error estimate is at least
@@ -75,7 +80,7 @@ set -euo pipefail
 source "$FSI_ROOT/scripts/env.sh"
 
 preset=coarse material=both npf=2 nps=2 launch=mpmd tc=0.12 cli=0.5 end="" timeout=900 meshFrom="" restart=0
-flow=laminar scheme=upwind algorithm="" fluidMesh=snappy initFrom="" band="" maxFluidIt="" fluidTol="" bandWindow="" bandMean="" oscWindow=""
+flow=laminar scheme=upwind algorithm="" fluidMesh=snappy initFrom="" band="" maxFluidIt="" fluidTol="" bandWindow="" bandMean="" bandRef="" oscWindow=""
 die() { echo "error: hydrofoil/run.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -96,12 +101,13 @@ while [ $# -gt 0 ]; do
     --init-from) [ $# -ge 2 ] || die "--init-from needs an OpenFOAM case folder"; initFrom=$2; shift 2 ;;
     --band-tolerance) [ $# -ge 2 ] || die "--band-tolerance needs a value"; band=$2; shift 2 ;;
     --band-mean-tolerance) [ $# -ge 2 ] || die "--band-mean-tolerance needs a value"; bandMean=$2; shift 2 ;;
+    --band-reference-force) [ $# -ge 2 ] || die "--band-reference-force needs a value in N"; bandRef=$2; shift 2 ;;
     --oscillation-window) [ $# -ge 2 ] || die "--oscillation-window needs a value"; oscWindow=$2; shift 2 ;;
     --band-window) [ $# -ge 2 ] || die "--band-window needs a value"; bandWindow=$2; shift 2 ;;
     --fluid-tolerance) [ $# -ge 2 ] || die "--fluid-tolerance needs a value"; fluidTol=$2; shift 2 ;;
     --max-fluid-iterations) [ $# -ge 2 ] || die "--max-fluid-iterations needs a value"; maxFluidIt=$2; shift 2 ;;
     --restart) restart=1; shift ;;
-    -h|--help) sed -n '3,72p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '3,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
     *) die "unknown option '$1' (see --help)" ;;
   esac
 done
@@ -114,6 +120,8 @@ case "$fluidMesh" in snappy|cgrid) ;; *) die "--fluid-mesh must be snappy or cgr
     die "--band-tolerance '$band' must be a number in (0, 1), e.g. 1e-2"
 [ -z "$bandMean" ] || awk -v b="$bandMean" 'BEGIN{exit !(b ~ /^[0-9.eE+-]+$/ && b + 0 > 0 && b + 0 < 1)}' ||
     die "--band-mean-tolerance '$bandMean' must be a number in (0, 1), e.g. 3e-3"
+[ -z "$bandRef" ] || awk -v b="$bandRef" 'BEGIN{exit !(b ~ /^[0-9.eE+-]+$/ && b + 0 > 0)}' ||
+    die "--band-reference-force '$bandRef' must be a force in N > 0, e.g. 1 (the t = 0 lift)"
 [ -z "$oscWindow" ] || { [[ "$oscWindow" =~ ^[1-9][0-9]*$ ]] && [ "$oscWindow" -ge 3 ] && [ "$oscWindow" -le 1000 ]; } ||
     die "--oscillation-window '$oscWindow' must be an integer in 3..1000 (about one period of the force's oscillation)"
 [ -z "$fluidTol" ] || awk -v f="$fluidTol" 'BEGIN{exit !(f ~ /^[0-9.eE+-]+$/ && f + 0 > 0 && f + 0 < 1)}' ||
@@ -188,6 +196,7 @@ for m in "${runs[@]}"; do
     [ -z "$band" ] || foamDictionary "$fluid/system/fsiDict" -entry coupled/bandTolerance -set "$band" > /dev/null
     [ -z "$maxFluidIt" ] || foamDictionary "$fluid/system/fsiDict" -entry coupled/maxIterations -set "$maxFluidIt" > /dev/null
     [ -z "$bandMean" ] || foamDictionary "$fluid/system/fsiDict" -entry coupled/bandMeanTolerance -set "$bandMean" > /dev/null
+    [ -z "$bandRef" ] || foamDictionary "$fluid/system/fsiDict" -entry coupled/bandReferenceForce -set "$bandRef" > /dev/null
     [ -z "$oscWindow" ] || foamDictionary "$fluid/system/fsiDict" -entry coupled/oscillationWindow -set "$oscWindow" > /dev/null
     [ -z "$bandWindow" ] || foamDictionary "$fluid/system/fsiDict" -entry coupled/bandWindow -set "$bandWindow" > /dev/null
   fi

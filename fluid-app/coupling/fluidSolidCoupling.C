@@ -311,6 +311,14 @@ Foam::fluidSolidCoupling::SolveControls Foam::fluidSolidCoupling::controls
     c.bandTolerance = d.getOrDefault<scalar>("bandTolerance", 0);
     c.bandWindow = d.getOrDefault<label>("bandWindow", 100);
     c.bandMeanTolerance = d.getOrDefault<scalar>("bandMeanTolerance", 0);
+    c.bandReferenceForce = d.getOrDefault<scalar>("bandReferenceForce", 0);
+    if (c.bandReferenceForce < 0)
+    {
+        FatalIOErrorInFunction(dict_)
+            << "system/fsiDict: " << subDictName << ".bandReferenceForce "
+            << c.bandReferenceForce << " is invalid: 0 (off: the band is relative to the mean"
+            << " force) or the force scale in N (e.g. the level-0 lift)" << exit(FatalIOError);
+    }
     if (c.bandMeanTolerance < 0 || c.bandMeanTolerance >= 1)
     {
         FatalIOErrorInFunction(dict_)
@@ -388,6 +396,7 @@ Foam::fluidSolidCoupling::SolveControls Foam::fluidSolidCoupling::askedControls
     c.bandTolerance = own.bandTolerance;
     c.bandWindow = own.bandWindow;
     c.bandMeanTolerance = own.bandMeanTolerance;
+    c.bandReferenceForce = own.bandReferenceForce;
     return c;
 }
 

@@ -73,9 +73,9 @@ bool SteadyConvergence::meanMet(int iteration, const double force[3])
             change2 += change * change;
             band2 += half * half;
         }
-        const double magMean = std::sqrt(mean2);
-        band_ = magMean > 0 ? std::sqrt(band2) / magMean : HUGE_VAL;
-        meanChange_ = magMean > 0 ? std::sqrt(change2) / magMean : HUGE_VAL;
+        const double scale = std::max(std::sqrt(mean2), controls_.bandReferenceForce);
+        band_ = scale > 0 ? std::sqrt(band2) / scale : HUGE_VAL;
+        meanChange_ = scale > 0 ? std::sqrt(change2) / scale : HUGE_VAL;
         met = band_ <= controls_.bandTolerance &&
               meanChange_ <= std::max(controls_.forceTolerance, controls_.bandMeanTolerance);
     }

@@ -494,6 +494,10 @@ def t_bad_case(a):
     rc, log = run([a.fluid_app, "-rigid", "-case", d], os.path.join(d, "log.bad-band-mean"))
     check(rc != 0 and "system/fsiDict: coupled.bandMeanTolerance 1.5 is invalid" in log,
           "coupled.bandMeanTolerance 1.5: exit %d, message names the key and the range" % rc)
+    open(fsi, "w").write(good + "\ncoupled { forceTolerance 1e-4; bandTolerance 2e-3; bandReferenceForce -1; }\n")
+    rc, log = run([a.fluid_app, "-rigid", "-case", d], os.path.join(d, "log.bad-band-reference"))
+    check(rc != 0 and "system/fsiDict: coupled.bandReferenceForce -1 is invalid" in log,
+          "coupled.bandReferenceForce -1: exit %d, message names the key and the range" % rc)
     # The run mode is resolved once, before OpenFOAM starts (fluid-app/coupling/runMode.H).
     open(fsi, "w").write(good + "\nmode rigd;\n")
     rc, log = run([a.fluid_app, "-case", d], os.path.join(d, "log.bad-mode"))

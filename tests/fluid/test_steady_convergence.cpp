@@ -320,6 +320,29 @@ TEST(SteadyConvergence, BandMeanToleranceLoosensOnlyTheMeanTest)
     EXPECT_GT(withFloor, 2); // not stopped by the looser floor
 }
 
+// bandReferenceForce: an oscillation that keeps its amplitude (0.01 N per component) while the
+// mean force shrinks to (0.1, 0.04) N, as the hydrofoil's lift passes through zero: its band is
+// 13 % of |Fm|, refused under bandTolerance 2e-2; against a 1 N scale it is 1.4 %, accepted,
+// and reported against that scale. A reference below |Fm| changes nothing. (The blocks' means
+// differ by 6.4e-5 N here, above the asked 5e-5: bandMeanTolerance 1e-3, the hydrofoil's 3e-3.)
+TEST(SteadyConvergence, BandReferenceForceKeepsTheBandWhereTheMeanForceIsSmall)
+{
+    UnsteadyForce f;
+    f.f0 = 0.1;
+    SolveControls c = drivenControls(2e-2);
+    c.bandMeanTolerance = 1e-3;
+    EXPECT_EQ(runUnsteady(c, f, 400).iteration, 0);
+    c.bandReferenceForce = 0.05; // below |Fm| = 0.108 N
+    EXPECT_EQ(runUnsteady(c, f, 400).iteration, 0);
+    c.bandReferenceForce = 1.0;
+    const BandStop stop = runUnsteady(c, f, 400);
+    EXPECT_EQ(stop.iteration, 200);
+    EXPECT_TRUE(stop.inTheMean);
+    // half-width sqrt(2) x 0.01 N (less the sampling of a period of 23: cos(pi/23) = 0.991)
+    EXPECT_NEAR(stop.band, std::sqrt(2.0) * f.amplitude / c.bandReferenceForce, 2e-4);
+    EXPECT_LE(stop.meanChange, c.bandMeanTolerance);
+}
+
 // A converging solve stops where it did without the rule (the blocks only add a way out).
 TEST(SteadyConvergence, BandRuleLeavesConvergingSolvesAlone)
 {

@@ -2,8 +2,8 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # tests/cases/hydrofoil/test_run_options.sh WORK
 #
-# run.sh refuses bad values of --band-tolerance, --band-mean-tolerance, --band-window,
-# --oscillation-window, --fluid-tolerance and --max-fluid-iterations before it writes anything:
+# run.sh refuses bad values of --band-tolerance, --band-mean-tolerance, --band-reference-force,
+# --band-window, --oscillation-window, --fluid-tolerance and --max-fluid-iterations before it writes anything:
 # exit 2, one line on stderr naming the option, no mesh/ or results/ in the run folder. Needs
 # FSI_ROOT (the repository); no OpenFOAM run, no MPI.
 set -uo pipefail
@@ -34,6 +34,8 @@ check --max-fluid-iterations 4e2
 check --fluid-tolerance 0
 check --fluid-tolerance 2
 check --band-mean-tolerance -1e-3
+check --band-reference-force 0
+check --band-reference-force 1N
 check --oscillation-window 2
 check --band-window 5
 check --band-window 300   # 2 x 300 > the case's cap of 400
