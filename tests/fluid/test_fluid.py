@@ -529,6 +529,23 @@ def t_bad_case(a):
     check(rc == 0 and "not on disk" not in log and start == ["9.75548"],
           "restart at t = 9.7554795541 s with accepted.csv's 9.7554796: exit %d, startTime %s (9.75548)"
           % (rc, start))
+    # A run that raised timePrecision wrote the level as 20.228347; precision 6 would look for
+    # 20.2283 (OpenFOAM names the start time with timePrecision significant digits).
+    os.makedirs(os.path.join(rd, "20.228347"))
+    cd = os.path.join(rd, "system", "controlDict")
+    open(cd, "w").write(re.sub(r"^timePrecision\s+\d+;", "timePrecision   6;", open(cd).read(), flags=re.M))
+    open(os.path.join(rd, "postProcessing", "fsi", "accepted.csv"), "a").write(
+        "7,20.228346967681681,20.228347\n")
+    open(os.path.join(rd, "solid-out", "checkpoint", "latest"), "w").write(
+        "level 7\ntime 20.228346967681681\nfolder level_000007\n")
+    rc, log = run([restart, rd, os.path.join(rd, "solid-out")], os.path.join(d, "log.restart-precision"))
+    text = open(os.path.join(rd, "system", "controlDict")).read()
+    start = re.findall(r"^startTime\s+(\S+);", text, re.M)
+    prec = re.findall(r"^timePrecision\s+(\d+);", text, re.M)
+    check(rc == 0 and start == ["20.228347"] and len(prec) == 1
+          and "%.*g" % (int(prec[0]), float(start[0])) == "20.228347",
+          "restart from the folder 20.228347: exit %d, startTime %s, timePrecision %s names it"
+          % (rc, start, prec))
 
 
 def t_parallel_equivalence(a):
