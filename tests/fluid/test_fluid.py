@@ -473,31 +473,32 @@ def t_bad_case(a):
     rc, log = run([a.fluid_app, "-rigid", "-case", d], os.path.join(d, "log.missing-key"))
     check(rc != 0 and "interfacePatch" in log and "fsiDict" in log,
           "missing interfacePatch key: exit %d, message names the key and the file" % rc)
-    open(fsi, "w").write(good + "\ncoupled { warmStart { type secnt; } }\n")
-    rc, log = run([a.fluid_app, "-rigid", "-case", d], os.path.join(d, "log.bad-warm-start"))
-    check(rc != 0 and "coupled.warmStart.type must be previous or secant, got 'secnt'" in log,
-          "unknown coupled.warmStart.type: exit %d, message names the file's key and the choices" % rc)
-    open(fsi, "w").write(good + "\ncoupled { oscillationWindow 2; }\n")
-    rc, log = run([a.fluid_app, "-rigid", "-case", d], os.path.join(d, "log.bad-window"))
-    check(rc != 0 and "system/fsiDict: coupled.oscillationWindow 2 is invalid: 0 (off) or 3..1000" in log,
-          "coupled.oscillationWindow 2: exit %d, message names the file's key and the range" % rc)
-    open(fsi, "w").write(good + "\ncoupled { forceTolerance 1e-4; bandTolerance 2e-3; bandWindow 600; }\n")
-    rc, log = run([a.fluid_app, "-rigid", "-case", d], os.path.join(d, "log.bad-band"))
-    check(rc != 0 and "system/fsiDict: coupled.bandTolerance 0.002 / bandWindow 600 are invalid" in log
-          and "2 bandWindow <= maxIterations" in log,
-          "coupled.bandWindow 600 above half the cap: exit %d, message names the key and the bound" % rc)
-    open(fsi, "w").write(good + "\nrigid { forceTolerance 1e-4; bandTolerance 2e-3; bandWindow 5; }\n")
-    rc, log = run([a.fluid_app, "-rigid", "-case", d], os.path.join(d, "log.rigid-band"))
-    check(rc != 0 and "system/fsiDict: rigid.bandTolerance 0.002 / bandWindow 5 are invalid" in log,
-          "rigid.bandWindow 5: exit %d, message names the rigid key and the bound" % rc)
-    open(fsi, "w").write(good + "\ncoupled { forceTolerance 1e-4; bandTolerance 2e-3; bandMeanTolerance 1.5; }\n")
-    rc, log = run([a.fluid_app, "-rigid", "-case", d], os.path.join(d, "log.bad-band-mean"))
-    check(rc != 0 and "system/fsiDict: coupled.bandMeanTolerance 1.5 is invalid" in log,
-          "coupled.bandMeanTolerance 1.5: exit %d, message names the key and the range" % rc)
-    open(fsi, "w").write(good + "\ncoupled { forceTolerance 1e-4; bandTolerance 2e-3; bandReferenceForce -1; }\n")
-    rc, log = run([a.fluid_app, "-rigid", "-case", d], os.path.join(d, "log.bad-band-reference"))
-    check(rc != 0 and "system/fsiDict: coupled.bandReferenceForce -1 is invalid" in log,
-          "coupled.bandReferenceForce -1: exit %d, message names the key and the range" % rc)
+    # one bad key each: (fsiDict addition, log name, what the message must contain, what it checks)
+    bad_keys = [
+        ("coupled { warmStart { type secnt; } }", "bad-warm-start",
+         ["coupled.warmStart.type must be previous or secant, got 'secnt'"],
+         "unknown coupled.warmStart.type: message names the file's key and the choices"),
+        ("coupled { oscillationWindow 2; }", "bad-window",
+         ["system/fsiDict: coupled.oscillationWindow 2 is invalid: 0 (off) or 3..1000"],
+         "coupled.oscillationWindow 2: message names the file's key and the range"),
+        ("coupled { forceTolerance 1e-4; bandTolerance 2e-3; bandWindow 600; }", "bad-band",
+         ["system/fsiDict: coupled.bandTolerance 0.002 / bandWindow 600 are invalid",
+          "2 bandWindow <= maxIterations"],
+         "coupled.bandWindow 600 above half the cap: message names the key and the bound"),
+        ("rigid { forceTolerance 1e-4; bandTolerance 2e-3; bandWindow 5; }", "rigid-band",
+         ["system/fsiDict: rigid.bandTolerance 0.002 / bandWindow 5 are invalid"],
+         "rigid.bandWindow 5: message names the rigid key and the bound"),
+        ("coupled { forceTolerance 1e-4; bandTolerance 2e-3; bandMeanTolerance 1.5; }", "bad-band-mean",
+         ["system/fsiDict: coupled.bandMeanTolerance 1.5 is invalid"],
+         "coupled.bandMeanTolerance 1.5: message names the key and the range"),
+        ("coupled { forceTolerance 1e-4; bandTolerance 2e-3; bandReferenceForce -1; }",
+         "bad-band-reference", ["system/fsiDict: coupled.bandReferenceForce -1 is invalid"],
+         "coupled.bandReferenceForce -1: message names the key and the range"),
+    ]
+    for extra, name, messages, what in bad_keys:
+        open(fsi, "w").write(good + "\n" + extra + "\n")
+        rc, log = run([a.fluid_app, "-rigid", "-case", d], os.path.join(d, "log." + name))
+        check(rc != 0 and all(m in log for m in messages), "%s (exit %d)" % (what, rc))
     # The run mode is resolved once, before OpenFOAM starts (fluid-app/coupling/runMode.H).
     open(fsi, "w").write(good + "\nmode rigd;\n")
     rc, log = run([a.fluid_app, "-case", d], os.path.join(d, "log.bad-mode"))
