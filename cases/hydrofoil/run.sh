@@ -116,15 +116,16 @@ case "$launch" in mpmd|port) ;; *) die "--launch must be mpmd or port" ;; esac
 "$FSI_ROOT/cases/hydrofoil/tools/setFlow.sh" --check-only --flow "$flow" --scheme "$scheme" \
     ${algorithm:+--algorithm "$algorithm"}
 case "$fluidMesh" in snappy|cgrid) ;; *) die "--fluid-mesh must be snappy or cgrid" ;; esac
-[ -z "$band" ] || awk -v b="$band" 'BEGIN{exit !(b ~ /^[0-9.eE+-]+$/ && b + 0 > 0 && b + 0 < 1)}' ||
-    die "--band-tolerance '$band' must be a number in (0, 1), e.g. 1e-2"
-[ -z "$bandMean" ] || awk -v b="$bandMean" 'BEGIN{exit !(b ~ /^[0-9.eE+-]+$/ && b + 0 > 0 && b + 0 < 1)}' ||
+# positive VALUE [UPPER]: VALUE is a number > 0 (and < UPPER)
+positive() { awk -v v="$1" -v u="${2:-}" 'BEGIN{exit !(v ~ /^[0-9.eE+-]+$/ && v + 0 > 0 && (u == "" || v + 0 < u + 0))}'; }
+[ -z "$band" ] || positive "$band" 1 || die "--band-tolerance '$band' must be a number in (0, 1), e.g. 1e-2"
+[ -z "$bandMean" ] || positive "$bandMean" 1 ||
     die "--band-mean-tolerance '$bandMean' must be a number in (0, 1), e.g. 3e-3"
-[ -z "$bandRef" ] || awk -v b="$bandRef" 'BEGIN{exit !(b ~ /^[0-9.eE+-]+$/ && b + 0 > 0)}' ||
+[ -z "$bandRef" ] || positive "$bandRef" ||
     die "--band-reference-force '$bandRef' must be a force in N > 0, e.g. 1 (the t = 0 lift)"
 [ -z "$oscWindow" ] || { [[ "$oscWindow" =~ ^[1-9][0-9]*$ ]] && [ "$oscWindow" -ge 3 ] && [ "$oscWindow" -le 1000 ]; } ||
     die "--oscillation-window '$oscWindow' must be an integer in 3..1000 (about one period of the force's oscillation)"
-[ -z "$fluidTol" ] || awk -v f="$fluidTol" 'BEGIN{exit !(f ~ /^[0-9.eE+-]+$/ && f + 0 > 0 && f + 0 < 1)}' ||
+[ -z "$fluidTol" ] || positive "$fluidTol" 1 ||
     die "--fluid-tolerance '$fluidTol' must be a number in (0, 1), e.g. 3e-3"
 if [ -n "$fluidTol" ]; then
   for y in solid/baseline.yaml solid/relaxed.yaml solid/viscoelastic.yaml; do
@@ -193,12 +194,11 @@ for m in "${runs[@]}"; do
     # the mesh's fluid case with this case's settings, flow model and scheme, decomposed
     "$run/tools/fluidCase.sh" "$fluid" "$run/mesh/fluid" "$npf" --flow "$flow" --scheme "$scheme" \
         ${algorithm:+--algorithm "$algorithm"} ${initFrom:+--init-from "$initFrom"}
-    [ -z "$band" ] || foamDictionary "$fluid/system/fsiDict" -entry coupled/bandTolerance -set "$band" > /dev/null
-    [ -z "$maxFluidIt" ] || foamDictionary "$fluid/system/fsiDict" -entry coupled/maxIterations -set "$maxFluidIt" > /dev/null
-    [ -z "$bandMean" ] || foamDictionary "$fluid/system/fsiDict" -entry coupled/bandMeanTolerance -set "$bandMean" > /dev/null
-    [ -z "$bandRef" ] || foamDictionary "$fluid/system/fsiDict" -entry coupled/bandReferenceForce -set "$bandRef" > /dev/null
-    [ -z "$oscWindow" ] || foamDictionary "$fluid/system/fsiDict" -entry coupled/oscillationWindow -set "$oscWindow" > /dev/null
-    [ -z "$bandWindow" ] || foamDictionary "$fluid/system/fsiDict" -entry coupled/bandWindow -set "$bandWindow" > /dev/null
+    # the options given, as fsiDict coupled/KEY
+    for kv in bandTolerance="$band" maxIterations="$maxFluidIt" bandMeanTolerance="$bandMean" \
+              bandReferenceForce="$bandRef" oscillationWindow="$oscWindow" bandWindow="$bandWindow"; do
+      [ -z "${kv#*=}" ] || foamDictionary "$fluid/system/fsiDict" -entry "coupled/${kv%%=*}" -set "${kv#*=}" > /dev/null
+    done
   fi
   parallel=""
   [ "$npf" -gt 1 ] && parallel=-parallel
