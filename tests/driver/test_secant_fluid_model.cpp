@@ -91,6 +91,38 @@ TEST(SecantFluidModel, ExactForAnAffineFluidOnceItsDirectionsAreSampled)
     EXPECT_LT((prediction->displacement - exact).norm(), 1e-12 * exact.norm());
 }
 
+// The case's pattern: a level with a coupling iteration (its perturbation 1 % of the next
+// level's creep step, in another direction), then a level accepted on its first solve. The
+// older level's iteration is a column of its own perturbation (taken from that level's accepted
+// state, not from the base): both directions are kept, and the prediction for the level after is
+// the exact fixed point; with differences to the base, that column has 1 % new direction, below
+// the 5 % filter, and the model would be one column. The pair's solid answers are solved once
+// and kept: a second prediction needs no solve.
+TEST(SecantFluidModel, AnOlderLevelsIterationKeepsItsDirectionBesideTheCreep)
+{
+    AffineProblem p;
+    SecantFluidModel model(3);
+    const Eigen::VectorXd start = Eigen::VectorXd::Random(kSize);
+    const Eigen::VectorXd perturbed = start + 0.01 * p.right.col(1);
+    const Eigen::VectorXd crept = start + p.right.col(0);
+    for (const Eigen::VectorXd* u : {&perturbed, &start})
+        model.addSample(*u, p.fluid(*u));
+    model.acceptLevel();
+    model.addSample(crept, p.fluid(crept));
+    model.acceptLevel();
+    const auto columns = model.selectColumns();
+    ASSERT_EQ(columns.size(), 2u);
+    const auto prediction = p.predict(model, columns);
+    ASSERT_TRUE(prediction.has_value());
+    EXPECT_EQ(prediction->solidSolves, 3);
+    const Eigen::VectorXd exact = p.fixedPoint();
+    EXPECT_LT((prediction->displacement - exact).norm(), 1e-10 * exact.norm());
+    const auto again = p.predict(model, columns);
+    ASSERT_TRUE(again.has_value());
+    EXPECT_EQ(again->solidSolves, 0);
+    EXPECT_LT((again->displacement - exact).norm(), 1e-10 * exact.norm());
+}
+
 // With the solid's linear response (respond: A W for the load changes W, here A = C), the
 // columns cost no solve: one solve for the base, one respond() call for all columns, and the
 // same exact fixed point. Those answers are not kept: a second prediction asks again.

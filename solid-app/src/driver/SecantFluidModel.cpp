@@ -5,6 +5,7 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <tuple>
@@ -125,15 +126,28 @@ std::vector<int> SecantFluidModel::candidates(int base) const
     return current;
 }
 
+int SecantFluidModel::reference(int sample, int base) const
+{
+    const Sample& s = samples_[sample];
+    if (s.accepted || s.level >= currentLevel_)
+        return base;
+    for (int i = 0; i < static_cast<int>(samples_.size()); ++i)
+        if (samples_[i].accepted && samples_[i].level == s.level)
+            return i;
+    return base;
+}
+
 Eigen::MatrixXd SecantFluidModel::differences(int base, const std::vector<int>& others,
                                               bool forces) const
 {
-    const auto& b = samples_[base];
-    Eigen::MatrixXd d(b.u.size(), static_cast<Eigen::Index>(others.size()));
+    Eigen::MatrixXd d(samples_[base].u.size(), static_cast<Eigen::Index>(others.size()));
     for (std::size_t j = 0; j < others.size(); ++j)
+    {
+        const Sample& from = samples_[reference(others[j], base)];
+        const Sample& to = samples_[others[j]];
         d.col(static_cast<Eigen::Index>(j)) =
-            forces ? Eigen::VectorXd(b.force - samples_[others[j]].force)
-                   : Eigen::VectorXd(b.u - samples_[others[j]].u);
+            forces ? Eigen::VectorXd(from.force - to.force) : Eigen::VectorXd(from.u - to.u);
+    }
     return d;
 }
 
@@ -146,7 +160,7 @@ std::vector<int> SecantFluidModel::selectColumns(Base which, double minColumnRms
     const double n = static_cast<double>(samples_[b].u.size());
     for (int i : candidates(b))
     {
-        const double distance = (samples_[b].u - samples_[i].u).norm();
+        const double distance = (samples_[reference(i, b)].u - samples_[i].u).norm();
         if (distance > 0.0 && distance >= minColumnRms * std::sqrt(n))
             all.push_back(i);
     }
@@ -180,23 +194,32 @@ SecantFluidModel::predict(const std::vector<int>& columns, const SolidSolve& sol
     Prediction p;
     p.columns = k;
     const Eigen::MatrixXd w = differences(b, columns, true);
-    // The solid is affine in its loads: for the column W_j = F_b - F_s,
-    // Z_j = S(F_b + W_j) - S(F_b) = S(F_b) - S(F_s). A sample whose answer is kept costs no solve;
-    // otherwise S(F_b + W_j) is solved (as the level predictor always did) and S(F_s) kept.
+    // The solid is affine in its loads: for the column W_j = F_r - F_s (r its reference sample),
+    // Z_j = S(F_b + W_j) - S(F_b) = S(F_r) - S(F_s). A column whose two samples' answers are kept
+    // costs no solve; otherwise S(F_b + W_j) is solved (as the level predictor always did) and
+    // the missing answer of the pair kept.
     Sample& origin = samples_[b];
-    std::vector<int> unknown; // columns whose sample has no answer at this level
+    std::vector<int> references(static_cast<std::size_t>(k));
     for (int j = 0; j < k; ++j)
-        if (samples_[columns[j]].response.size() == 0)
+        references[j] = reference(columns[j], b);
+    const auto answered = [&](int j)
+    {
+        return samples_[columns[j]].response.size() != 0 &&
+               (references[j] == b || samples_[references[j]].response.size() != 0);
+    };
+    std::vector<int> unknown; // columns whose pair has no answer at this level
+    for (int j = 0; j < k; ++j)
+        if (!answered(j))
             unknown.push_back(j);
     Eigen::MatrixXd loads(w.rows(), static_cast<Eigen::Index>(unknown.size()));
     for (std::size_t i = 0; i < unknown.size(); ++i)
         loads.col(static_cast<Eigen::Index>(i)) = w.col(unknown[i]);
     const bool respondToUnknown = respond && !unknown.empty();
-    std::optional<Eigen::MatrixXd> answered; // by the base solve
+    std::optional<Eigen::MatrixXd> withBase; // the columns' answers from the base solve
     if (origin.response.size() == 0)
     {
         if (respondToUnknown && solveAndRespond)
-            std::tie(origin.response, answered.emplace()) = solveAndRespond(origin.force, loads);
+            std::tie(origin.response, withBase.emplace()) = solveAndRespond(origin.force, loads);
         else
             origin.response = solve(origin.force);
         ++p.solidSolves;
@@ -205,7 +228,7 @@ SecantFluidModel::predict(const std::vector<int>& columns, const SolidSolve& sol
     Eigen::MatrixXd z(response.size(), k);
     if (respondToUnknown)
     {
-        const Eigen::MatrixXd answers = answered ? *answered : respond(loads);
+        const Eigen::MatrixXd answers = withBase ? *withBase : respond(loads);
         if (answers.rows() != response.size() || answers.cols() != loads.cols())
             throw std::logic_error("SecantFluidModel: the solid response has the wrong size");
         for (std::size_t i = 0; i < unknown.size(); ++i)
@@ -214,17 +237,21 @@ SecantFluidModel::predict(const std::vector<int>& columns, const SolidSolve& sol
     }
     for (int j = 0; j < k; ++j)
     {
-        Sample& s = samples_[columns[j]];
-        if (respond && s.response.size() == 0)
+        if (respondToUnknown && std::find(unknown.begin(), unknown.end(), j) != unknown.end())
             continue; // answered above
-        if (s.response.size() == 0)
+        Sample& s = samples_[columns[j]];
+        Sample& r = samples_[references[j]];
+        if (answered(j))
         {
-            z.col(j) = solve(origin.force + w.col(j)) - response;
-            ++p.solidSolves;
-            s.response = response - z.col(j);
+            z.col(j) = r.response - s.response;
+            continue;
         }
-        else
-            z.col(j) = response - s.response;
+        z.col(j) = solve(origin.force + w.col(j)) - response;
+        ++p.solidSolves;
+        if (r.response.size() != 0)
+            s.response = r.response - z.col(j);
+        else if (s.response.size() != 0)
+            r.response = s.response + z.col(j);
     }
 
     // V^+ x = R^{-1} Q^T x.

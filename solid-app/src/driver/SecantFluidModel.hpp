@@ -6,10 +6,14 @@
 //
 // The quasi-steady loads depend on time only through the interface. Each fluid solve is a sample
 // (interface input u_s [m], nodal loads F_s [N]). The base is the last accepted level's final
-// solve (u_n, F_n); the columns of V and W are the differences u_n - u_s and F_n - F_s to the
+// solve (u_n, F_n); the columns of V and W are the differences u_r - u_s and F_r - F_s of the
 // other samples of that level and of the maxLevels levels before it (accepted states first,
 // then the coupling iterations, newest first; a column with less than 5 % of new direction
-// (QR filter) is dropped; at most maxColumns):
+// (QR filter) is dropped; at most maxColumns). The reference r is the base, except for a coupling
+// iteration of an older level: there it is that level's accepted state, so that the column is
+// the iteration's own perturbation, not the creep since that level plus it (a perturbation 20
+// times smaller than that creep fails the 5 % filter, and a level accepted on its first solve
+// then leaves the next predictor a one-column model). All kept, both choices span the same space:
 //   F(u) ~ F_n + W c,   c = argmin |V c - (u - u_n)|      (a secant model, zero response off
 //                                                          the span of V)
 // The level differences alone do not do: a level's step mixes the bending that the load change
@@ -118,9 +122,10 @@ public:
         // samples' noise, up to 1/feedbackMargin-fold
         double feedbackMargin = 1.0;
     };
-    // The samples whose differences to the base are usable columns (indices into the stored
-    // samples, newest first): nearly parallel ones (less than 5 % new direction) and those whose
-    // interface differs from the base's by less than minColumnRms [m] (|v|/sqrt(n): noise of the
+    // The samples whose differences (to the base or their level's accepted state) are usable
+    // columns (indices into the stored samples, newest first): nearly parallel ones (less than
+    // 5 % new direction) and those whose interface differs from that reference's by less than
+    // minColumnRms [m] (|v|/sqrt(n): noise of the
     // fluid's accuracy, not a direction) are dropped. Empty when there is no base or no other
     // sample. A distributed caller takes rank 0's choice, so that every rank solves equally often.
     std::vector<int> selectColumns(Base base = Base::Accepted, double minColumnRms = 0.0) const;
@@ -138,6 +143,9 @@ public:
 
 private:
     int base(Base which) const; // index of the base sample (-1: none)
+    // The sample a column's difference is taken from (header comment): the accepted state of an
+    // older level's coupling iteration, else `base`.
+    int reference(int sample, int base) const;
     Eigen::MatrixXd differences(int base, const std::vector<int>& others, bool forces) const;
 
     int maxColumns_, maxLevels_;
