@@ -123,6 +123,30 @@ TEST(SecantFluidModel, AnOlderLevelsIterationKeepsItsDirectionBesideTheCreep)
     EXPECT_LT((again->displacement - exact).norm(), 1e-10 * exact.norm());
 }
 
+// A run of levels accepted on their first solve, longer than the memory: the newest level with
+// a coupling iteration stays (its perturbation is the only second direction), the creep steps
+// alone being parallel; the prediction is the exact fixed point. Levels without an iteration
+// beyond the memory are still forgotten.
+TEST(SecantFluidModel, KeepsTheNewestIterationBeyondItsMemory)
+{
+    AffineProblem p;
+    SecantFluidModel model(3, 2);
+    const Eigen::VectorXd start = Eigen::VectorXd::Random(kSize);
+    const Eigen::VectorXd perturbed = start + 0.01 * p.right.col(1);
+    for (const Eigen::VectorXd* u : {&perturbed, &start})
+        model.addSample(*u, p.fluid(*u));
+    model.acceptLevel();
+    for (int level = 1; level <= 5; ++level)
+        p.sampleLevel(model, 1, [&] { return Eigen::VectorXd(start + level * p.right.col(0)); });
+    EXPECT_EQ(model.levels(), 4); // the newest, the two before it, and level 0
+    const auto columns = model.selectColumns();
+    ASSERT_EQ(columns.size(), 2u);
+    const auto prediction = p.predict(model, columns);
+    ASSERT_TRUE(prediction.has_value());
+    const Eigen::VectorXd exact = p.fixedPoint();
+    EXPECT_LT((prediction->displacement - exact).norm(), 1e-10 * exact.norm());
+}
+
 // With the solid's linear response (respond: A W for the load changes W, here A = C), the
 // columns cost no solve: one solve for the base, one respond() call for all columns, and the
 // same exact fixed point. Those answers are not kept: a second prediction asks again.

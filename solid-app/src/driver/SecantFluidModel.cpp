@@ -40,8 +40,20 @@ void SecantFluidModel::acceptLevel()
         return;
     samples_[0].accepted = true;
     ++currentLevel_;
-    while (!samples_.empty() && samples_.back().level < currentLevel_ - 1 - maxLevels_)
-        samples_.pop_back();
+    // Levels older than the memory drop out, except the newest one with a coupling iteration
+    // when no level within the memory has one: its perturbation stays a column.
+    const int oldest = currentLevel_ - 1 - maxLevels_; // the oldest level kept
+    int perturbed = -1; // the newest level with a coupling iteration besides its accepted state
+    for (const auto& s : samples_)
+        if (!s.accepted && s.level < currentLevel_)
+        {
+            perturbed = s.level;
+            break; // newest first
+        }
+    const int keep = perturbed < oldest ? perturbed : -1;
+    samples_.erase(std::remove_if(samples_.begin(), samples_.end(), [&](const Sample& s)
+                                  { return s.level < oldest && s.level != keep; }),
+                   samples_.end());
 }
 
 void SecantFluidModel::setNewestResponse(const Eigen::VectorXd& displacement)

@@ -82,7 +82,10 @@ public:
     // Forgets the solid's answers: call whenever the solid's operator changes (each attempt at a
     // level, since a retried level may have another dt).
     void clearResponses();
-    // The current level was accepted on its last sample; older levels beyond maxLevels drop out.
+    // The current level was accepted on its last sample; older levels beyond maxLevels drop out,
+    // except the newest level with a coupling iteration while none within maxLevels has one (a
+    // run of levels accepted on their first solve would otherwise leave a model of the levels'
+    // steps alone: one column, all of them nearly parallel).
     void acceptLevel();
     void clear();
     int levels() const; // accepted levels held
