@@ -10,6 +10,7 @@
 #include <Eigen/Dense>
 
 #include <cstdio>
+#include <map>
 #include <optional>
 #include <vector>
 
@@ -145,6 +146,47 @@ TEST(SecantFluidModel, KeepsTheNewestIterationBeyondItsMemory)
     ASSERT_TRUE(prediction.has_value());
     const Eigen::VectorXd exact = p.fixedPoint();
     EXPECT_LT((prediction->displacement - exact).norm(), 1e-10 * exact.norm());
+}
+
+// A perturbation below the noise floor (minPerturbationRms, the coupling tolerance in the driver)
+// is not a direction: the older level with a real one is kept instead, and the model has both
+// directions; counting the tiny one (floor 0) keeps it, drops the real one, and leaves one column.
+TEST(SecantFluidModel, ANoiseLevelIterationDoesNotReplaceARealPerturbation)
+{
+    const double floor = 1e-6; // [m], |v|/sqrt(n)
+    std::map<double, std::size_t> columnsByFloor;
+    for (const double minPerturbationRms : {floor, 0.0})
+    {
+        AffineProblem p;
+        SecantFluidModel model(3, 2);
+        const Eigen::VectorXd start = Eigen::VectorXd::Random(kSize);
+        const Eigen::VectorXd perturbed = start + 0.01 * p.right.col(1);
+        for (const Eigen::VectorXd* u : {&perturbed, &start})
+            model.addSample(*u, p.fluid(*u));
+        model.acceptLevel(minPerturbationRms);
+        const Eigen::VectorXd step = start + p.right.col(0);
+        const Eigen::VectorXd noise = step + 1e-9 * p.right.col(1);
+        for (const Eigen::VectorXd* u : {&noise, &step})
+            model.addSample(*u, p.fluid(*u));
+        model.acceptLevel(minPerturbationRms);
+        for (int level = 2; level <= 5; ++level)
+        {
+            const Eigen::VectorXd u = start + level * p.right.col(0);
+            model.addSample(u, p.fluid(u));
+            model.acceptLevel(minPerturbationRms);
+        }
+        const auto columns = model.selectColumns(SecantFluidModel::Base::Accepted, floor);
+        columnsByFloor[minPerturbationRms] = columns.size();
+        if (minPerturbationRms > 0.0)
+        {
+            const auto prediction = p.predict(model, columns);
+            ASSERT_TRUE(prediction.has_value());
+            const Eigen::VectorXd exact = p.fixedPoint();
+            EXPECT_LT((prediction->displacement - exact).norm(), 1e-10 * exact.norm());
+        }
+    }
+    EXPECT_EQ(columnsByFloor[floor], 2u);
+    EXPECT_EQ(columnsByFloor[0.0], 1u);
 }
 
 // With the solid's linear response (respond: A W for the load changes W, here A = C), the

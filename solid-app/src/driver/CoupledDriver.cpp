@@ -335,7 +335,7 @@ bool CoupledDriver::Impl::restore(const CheckpointStore::Loaded& saved,
             if (force->size() == n)
             {
                 secant.addSample(*u, *force);
-                secant.acceptLevel();
+                secant.acceptLevel(params.convergence.absoluteTolerance);
             }
     dtLast = d.lastStep;
     lastFirstResidual = d.firstResidual;
@@ -583,13 +583,16 @@ CoupledDriver::Impl::solveSecantModel(LevelRecord& record, SecantFluidModel::Bas
 
 // coupling.predictor secant: the solid at the new time coupled to the secant model of the fluid
 // (SecantFluidModel.hpp); the linear extrapolation while the model has no column or is degenerate.
+// Columns shorter than convergence.absolute_tolerance are noise of the fluid's accuracy and are
+// not used (as in secantStep).
 std::optional<LevelAttempt> CoupledDriver::Impl::predictSecant(LevelRecord& record, bool twoLevels)
 {
     std::optional<SecantFluidModel::Prediction> prediction;
     SecantCost cost;
     try
     {
-        prediction = solveSecantModel(record, SecantFluidModel::Base::Accepted, 0.0, &cost);
+        prediction = solveSecantModel(record, SecantFluidModel::Base::Accepted,
+                                      params.convergence.absoluteTolerance, &cost);
     }
     catch (const std::runtime_error& e)
     {
@@ -770,7 +773,7 @@ void CoupledDriver::Impl::acceptLevel(LevelRecord& record, double levelSeconds,
     accelerator->endLevel();
     solid.acceptLevel();
     fluid->accept(record.level, record.time);
-    secant.acceptLevel();
+    secant.acceptLevel(params.convergence.absoluteTolerance);
 
     const double norm = solverOutput.norm();
     record.relativeChange = norm > 0 ? (solverOutput - uLast).norm() / norm : 0.0;

@@ -34,7 +34,7 @@ void SecantFluidModel::addSample(const Eigen::VectorXd& u, const Eigen::VectorXd
     samples_.push_front({u, force, currentLevel_, false, Eigen::VectorXd()});
 }
 
-void SecantFluidModel::acceptLevel()
+void SecantFluidModel::acceptLevel(double minPerturbationRms)
 {
     if (samples_.empty() || samples_[0].level != currentLevel_)
         return;
@@ -44,12 +44,19 @@ void SecantFluidModel::acceptLevel()
     // when no level within the memory has one: its perturbation stays a column.
     const int oldest = currentLevel_ - 1 - maxLevels_; // the oldest level kept
     int perturbed = -1; // the newest level with a coupling iteration besides its accepted state
-    for (const auto& s : samples_)
-        if (!s.accepted && s.level < currentLevel_)
-        {
-            perturbed = s.level;
-            break; // newest first
-        }
+    const double floor = minPerturbationRms * std::sqrt(static_cast<double>(samples_[0].u.size()));
+    for (int i = 0; i < static_cast<int>(samples_.size()) && perturbed < 0; ++i)
+    {
+        const Sample& s = samples_[i];
+        if (s.accepted)
+            continue;
+        for (const auto& a : samples_)
+            if (a.accepted && a.level == s.level && (a.u - s.u).norm() >= floor)
+            {
+                perturbed = s.level;
+                break;
+            }
+    }
     const int keep = perturbed < oldest ? perturbed : -1;
     samples_.erase(std::remove_if(samples_.begin(), samples_.end(), [&](const Sample& s)
                                   { return s.level < oldest && s.level != keep; }),

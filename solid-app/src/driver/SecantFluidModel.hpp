@@ -85,8 +85,10 @@ public:
     // The current level was accepted on its last sample; older levels beyond maxLevels drop out,
     // except the newest level with a coupling iteration while none within maxLevels has one (a
     // run of levels accepted on their first solve would otherwise leave a model of the levels'
-    // steps alone: one column, all of them nearly parallel).
-    void acceptLevel();
+    // steps alone: one column, all of them nearly parallel). An iteration whose interface differs
+    // from its level's accepted one by less than minPerturbationRms [m] (|v|/sqrt(n)) does not
+    // count: noise of the fluid's accuracy, not a direction (pass selectColumns' minColumnRms).
+    void acceptLevel(double minPerturbationRms = 0.0);
     void clear();
     int levels() const; // accepted levels held
 
