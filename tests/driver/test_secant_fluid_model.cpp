@@ -69,6 +69,18 @@ struct AffineProblem
                     [&] { return Eigen::VectorXd(start + right * Eigen::Vector2d::Random()); });
         return model.selectColumns();
     }
+    // A level with one coupling iteration, a perturbation along the fluid's second direction,
+    // then its accepted state (returned) at a random interface.
+    Eigen::VectorXd sampleIteratedLevel(SecantFluidModel& model,
+                                        double minPerturbationRms = 0.0) const
+    {
+        const Eigen::VectorXd start = Eigen::VectorXd::Random(kSize);
+        const Eigen::VectorXd perturbed = start + 0.01 * right.col(1);
+        for (const Eigen::VectorXd* u : {&perturbed, &start})
+            model.addSample(*u, fluid(*u));
+        model.acceptLevel(minPerturbationRms);
+        return start;
+    }
     Eigen::VectorXd fixedPoint() const
     {
         const Eigen::MatrixXd a = Eigen::MatrixXd::Identity(kSize, kSize) - c * j;
@@ -103,12 +115,8 @@ TEST(SecantFluidModel, AnOlderLevelsIterationKeepsItsDirectionBesideTheCreep)
 {
     AffineProblem p;
     SecantFluidModel model(3);
-    const Eigen::VectorXd start = Eigen::VectorXd::Random(kSize);
-    const Eigen::VectorXd perturbed = start + 0.01 * p.right.col(1);
+    const Eigen::VectorXd start = p.sampleIteratedLevel(model);
     const Eigen::VectorXd crept = start + p.right.col(0);
-    for (const Eigen::VectorXd* u : {&perturbed, &start})
-        model.addSample(*u, p.fluid(*u));
-    model.acceptLevel();
     model.addSample(crept, p.fluid(crept));
     model.acceptLevel();
     const auto columns = model.selectColumns();
@@ -132,11 +140,7 @@ TEST(SecantFluidModel, KeepsTheNewestIterationBeyondItsMemory)
 {
     AffineProblem p;
     SecantFluidModel model(3, 2);
-    const Eigen::VectorXd start = Eigen::VectorXd::Random(kSize);
-    const Eigen::VectorXd perturbed = start + 0.01 * p.right.col(1);
-    for (const Eigen::VectorXd* u : {&perturbed, &start})
-        model.addSample(*u, p.fluid(*u));
-    model.acceptLevel();
+    const Eigen::VectorXd start = p.sampleIteratedLevel(model);
     for (int level = 1; level <= 5; ++level)
         p.sampleLevel(model, 1, [&] { return Eigen::VectorXd(start + level * p.right.col(0)); });
     EXPECT_EQ(model.levels(), 4); // the newest, the two before it, and level 0
@@ -159,11 +163,7 @@ TEST(SecantFluidModel, ANoiseLevelIterationDoesNotReplaceARealPerturbation)
     {
         AffineProblem p;
         SecantFluidModel model(3, 2);
-        const Eigen::VectorXd start = Eigen::VectorXd::Random(kSize);
-        const Eigen::VectorXd perturbed = start + 0.01 * p.right.col(1);
-        for (const Eigen::VectorXd* u : {&perturbed, &start})
-            model.addSample(*u, p.fluid(*u));
-        model.acceptLevel(minPerturbationRms);
+        const Eigen::VectorXd start = p.sampleIteratedLevel(model, minPerturbationRms);
         const Eigen::VectorXd step = start + p.right.col(0);
         const Eigen::VectorXd noise = step + 1e-9 * p.right.col(1);
         for (const Eigen::VectorXd* u : {&noise, &step})

@@ -58,7 +58,8 @@ void SecantFluidModel::acceptLevel(double minPerturbationRms)
             }
     }
     const int keep = perturbed < oldest ? perturbed : -1;
-    samples_.erase(std::remove_if(samples_.begin(), samples_.end(), [&](const Sample& s)
+    samples_.erase(std::remove_if(samples_.begin(), samples_.end(),
+                                  [&](const Sample& s)
                                   { return s.level < oldest && s.level != keep; }),
                    samples_.end());
 }
