@@ -130,9 +130,9 @@ public:
     // The samples whose differences (to the base or their level's accepted state) are usable
     // columns (indices into the stored samples, newest first): nearly parallel ones (less than
     // 5 % new direction) and those whose interface differs from that reference's by less than
-    // minColumnRms [m] (|v|/sqrt(n): noise of the
-    // fluid's accuracy, not a direction) are dropped. Empty when there is no base or no other
-    // sample. A distributed caller takes rank 0's choice, so that every rank solves equally often.
+    // minColumnRms [m] (|v|/sqrt(n): noise of the fluid's accuracy, not a direction) are dropped.
+    // Empty when there is no base or no other sample. A distributed caller takes rank 0's choice,
+    // so that every rank solves equally often.
     std::vector<int> selectColumns(Base base = Base::Accepted, double minColumnRms = 0.0) const;
     // The coupled state of the solid and the model. Calls solve() for the base and each column
     // whose answer at this level is not known yet (at most 1 + columns.size() times; none when
