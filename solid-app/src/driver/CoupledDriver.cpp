@@ -193,10 +193,11 @@ struct CoupledDriver::Impl
     LevelAttempt attemptLevel(LevelRecord& record, bool usePredictor);
     std::optional<LevelAttempt> predictFirstIterate(LevelRecord& record, bool usePredictor);
     std::optional<LevelAttempt> predictSecant(LevelRecord& record, bool twoLevels);
-    std::optional<SecantFluidModel::Prediction> solveSecantModel(LevelRecord& record,
-                                                                 SecantFluidModel::Base base,
-                                                                 double minColumnRms,
-                                                                 SecantCost* cost = nullptr);
+    std::optional<SecantFluidModel::Prediction>
+    solveSecantModel(LevelRecord& record, SecantFluidModel::Base base, SecantCost* cost = nullptr);
+    // The secant model's noise floor [m] (|v|/sqrt(n)): interface differences below the coupling
+    // tolerance are the fluid's scatter, not directions (columns and kept perturbations).
+    double secantNoiseFloor() const { return params.convergence.absoluteTolerance; }
     std::optional<LevelAttempt> secantStep(LevelRecord& record, IterationLine& line);
     // coupling.secant.min_feedback_margin: whether the model's answer may be used, as rank 0
     // judges it (every rank takes its choice). Collective.
@@ -335,7 +336,7 @@ bool CoupledDriver::Impl::restore(const CheckpointStore::Loaded& saved,
             if (force->size() == n)
             {
                 secant.addSample(*u, *force);
-                secant.acceptLevel(params.convergence.absoluteTolerance);
+                secant.acceptLevel(secantNoiseFloor());
             }
     dtLast = d.lastStep;
     lastFirstResidual = d.firstResidual;
@@ -524,12 +525,13 @@ std::optional<LevelAttempt> CoupledDriver::Impl::predictFirstIterate(LevelRecord
 
 // The solid at the level's time coupled to the secant model of the fluid expanded about `base`
 // (collective: rank 0's column choice is broadcast). nullopt when the model has no column or is
-// degenerate. Throws std::runtime_error when a solid solve fails.
+// degenerate; columns below secantNoiseFloor() are not used. Throws std::runtime_error when a
+// solid solve fails.
 std::optional<SecantFluidModel::Prediction>
 CoupledDriver::Impl::solveSecantModel(LevelRecord& record, SecantFluidModel::Base base,
-                                      double minColumnRms, SecantCost* cost)
+                                      SecantCost* cost)
 {
-    std::vector<int> columns = secant.selectColumns(base, minColumnRms);
+    std::vector<int> columns = secant.selectColumns(base, secantNoiseFloor());
     int count = static_cast<int>(columns.size());
     MPI_Bcast(&count, 1, MPI_INT, 0, comm);
     columns.resize(count);
@@ -583,16 +585,13 @@ CoupledDriver::Impl::solveSecantModel(LevelRecord& record, SecantFluidModel::Bas
 
 // coupling.predictor secant: the solid at the new time coupled to the secant model of the fluid
 // (SecantFluidModel.hpp); the linear extrapolation while the model has no column or is degenerate.
-// Columns shorter than convergence.absolute_tolerance are noise of the fluid's accuracy and are
-// not used (as in secantStep).
 std::optional<LevelAttempt> CoupledDriver::Impl::predictSecant(LevelRecord& record, bool twoLevels)
 {
     std::optional<SecantFluidModel::Prediction> prediction;
     SecantCost cost;
     try
     {
-        prediction = solveSecantModel(record, SecantFluidModel::Base::Accepted,
-                                      params.convergence.absoluteTolerance, &cost);
+        prediction = solveSecantModel(record, SecantFluidModel::Base::Accepted, &cost);
     }
     catch (const std::runtime_error& e)
     {
@@ -643,8 +642,7 @@ std::optional<LevelAttempt> CoupledDriver::Impl::secantStep(LevelRecord& record,
     std::optional<SecantFluidModel::Prediction> step;
     try
     {
-        step = solveSecantModel(record, SecantFluidModel::Base::Newest,
-                                params.convergence.absoluteTolerance);
+        step = solveSecantModel(record, SecantFluidModel::Base::Newest);
     }
     catch (const std::runtime_error& e)
     {
@@ -773,7 +771,7 @@ void CoupledDriver::Impl::acceptLevel(LevelRecord& record, double levelSeconds,
     accelerator->endLevel();
     solid.acceptLevel();
     fluid->accept(record.level, record.time);
-    secant.acceptLevel(params.convergence.absoluteTolerance);
+    secant.acceptLevel(secantNoiseFloor());
 
     const double norm = solverOutput.norm();
     record.relativeChange = norm > 0 ? (solverOutput - uLast).norm() / norm : 0.0;

@@ -44,18 +44,11 @@ void SecantFluidModel::acceptLevel(double minPerturbationRms)
     // when no level within the memory has one: its perturbation stays a column.
     const int oldest = currentLevel_ - 1 - maxLevels_; // the oldest level kept
     int perturbed = -1; // the newest level with a coupling iteration besides its accepted state
-    const double floor = minPerturbationRms * std::sqrt(static_cast<double>(samples_[0].u.size()));
     for (int i = 0; i < static_cast<int>(samples_.size()) && perturbed < 0; ++i)
     {
-        const Sample& s = samples_[i];
-        if (s.accepted)
-            continue;
-        for (const auto& a : samples_)
-            if (a.accepted && a.level == s.level && (a.u - s.u).norm() >= floor)
-            {
-                perturbed = s.level;
-                break;
-            }
+        const int accepted = samples_[i].accepted ? -1 : acceptedOf(samples_[i].level);
+        if (accepted >= 0 && isDirection(accepted, i, minPerturbationRms))
+            perturbed = samples_[i].level;
     }
     const int keep = perturbed < oldest ? perturbed : -1;
     samples_.erase(std::remove_if(samples_.begin(), samples_.end(),
@@ -146,15 +139,26 @@ std::vector<int> SecantFluidModel::candidates(int base) const
     return current;
 }
 
+int SecantFluidModel::acceptedOf(int level) const
+{
+    for (int i = 0; i < static_cast<int>(samples_.size()); ++i)
+        if (samples_[i].accepted && samples_[i].level == level)
+            return i;
+    return -1;
+}
+
 int SecantFluidModel::reference(int sample, int base) const
 {
     const Sample& s = samples_[sample];
-    if (s.accepted || s.level >= currentLevel_)
-        return base;
-    for (int i = 0; i < static_cast<int>(samples_.size()); ++i)
-        if (samples_[i].accepted && samples_[i].level == s.level)
-            return i;
-    return base;
+    const int accepted = s.accepted || s.level >= currentLevel_ ? -1 : acceptedOf(s.level);
+    return accepted >= 0 ? accepted : base;
+}
+
+bool SecantFluidModel::isDirection(int from, int to, double minColumnRms) const
+{
+    const Eigen::VectorXd& u = samples_[from].u;
+    const double distance = (u - samples_[to].u).norm();
+    return distance > 0.0 && distance >= minColumnRms * std::sqrt(static_cast<double>(u.size()));
 }
 
 Eigen::MatrixXd SecantFluidModel::differences(int base, const std::vector<int>& others,
@@ -177,13 +181,9 @@ std::vector<int> SecantFluidModel::selectColumns(Base which, double minColumnRms
     if (b < 0)
         return {};
     std::vector<int> all;
-    const double n = static_cast<double>(samples_[b].u.size());
     for (int i : candidates(b))
-    {
-        const double distance = (samples_[reference(i, b)].u - samples_[i].u).norm();
-        if (distance > 0.0 && distance >= minColumnRms * std::sqrt(n))
+        if (isDirection(reference(i, b), i, minColumnRms))
             all.push_back(i);
-    }
     if (all.empty())
         return {};
     const auto qr = acceleration::filteredQr(differences(b, all, false), kColumnFilter,
@@ -235,6 +235,7 @@ SecantFluidModel::predict(const std::vector<int>& columns, const SolidSolve& sol
     for (std::size_t i = 0; i < unknown.size(); ++i)
         loads.col(static_cast<Eigen::Index>(i)) = w.col(unknown[i]);
     const bool respondToUnknown = respond && !unknown.empty();
+    std::vector<bool> responded(static_cast<std::size_t>(k), false); // z_j from respond()
     std::optional<Eigen::MatrixXd> withBase; // the columns' answers from the base solve
     if (origin.response.size() == 0)
     {
@@ -252,13 +253,16 @@ SecantFluidModel::predict(const std::vector<int>& columns, const SolidSolve& sol
         if (answers.rows() != response.size() || answers.cols() != loads.cols())
             throw std::logic_error("SecantFluidModel: the solid response has the wrong size");
         for (std::size_t i = 0; i < unknown.size(); ++i)
+        {
             z.col(unknown[i]) = answers.col(static_cast<Eigen::Index>(i));
+            responded[unknown[i]] = true;
+        }
         p.responseColumns = static_cast<int>(unknown.size());
     }
     for (int j = 0; j < k; ++j)
     {
-        if (respondToUnknown && std::find(unknown.begin(), unknown.end(), j) != unknown.end())
-            continue; // answered above
+        if (responded[j])
+            continue;
         Sample& s = samples_[columns[j]];
         Sample& r = samples_[references[j]];
         if (answered(j))

@@ -148,9 +148,13 @@ public:
 
 private:
     int base(Base which) const; // index of the base sample (-1: none)
+    // Index of the given level's accepted sample (-1: none held).
+    int acceptedOf(int level) const;
     // The sample a column's difference is taken from (header comment): the accepted state of an
     // older level's coupling iteration, else `base`.
     int reference(int sample, int base) const;
+    // Whether u_from - u_to is a direction, not noise: nonzero and |.|/sqrt(n) >= minColumnRms.
+    bool isDirection(int from, int to, double minColumnRms) const;
     Eigen::MatrixXd differences(int base, const std::vector<int>& others, bool forces) const;
 
     int maxColumns_, maxLevels_;
