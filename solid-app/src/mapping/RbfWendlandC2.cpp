@@ -241,13 +241,12 @@ void RbfWendlandC2::solve(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& solution)
 {
     if (backend_ == Backend::Mumps)
     {
-        mumpsColumn_.resize(static_cast<std::size_t>(rhs.rows())); // sized once
-        for (Eigen::Index j = 0; j < rhs.cols(); ++j)
-        {
-            Eigen::VectorXd::Map(mumpsColumn_.data(), rhs.rows()) = rhs.col(j);
-            mumps_->solve(mumpsColumn_);
-            solution.col(j) = Eigen::VectorXd::Map(mumpsColumn_.data(), rhs.rows());
-        }
+        // All columns in one solve phase: the factor is read once, not once per column.
+        mumpsColumns_.resize(static_cast<std::size_t>(rhs.size())); // sized at the first apply
+        mumpsAllowances_.assign(static_cast<std::size_t>(rhs.cols()), 0.0);
+        Eigen::MatrixXd::Map(mumpsColumns_.data(), rhs.rows(), rhs.cols()) = rhs;
+        mumps_->solveMany(mumpsColumns_, static_cast<int>(rhs.cols()), mumpsAllowances_);
+        solution = Eigen::MatrixXd::Map(mumpsColumns_.data(), rhs.rows(), rhs.cols());
         return;
     }
     if (backend_ == Backend::Direct)

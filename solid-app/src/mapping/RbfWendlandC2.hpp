@@ -96,8 +96,11 @@ private:
     Backend backend_ = Backend::Direct;
     // MUMPS on MPI_COMM_SELF (the mapping runs on solid rank 0); mutable: a solve is const here
     mutable std::unique_ptr<linalg::SparseDirectSolver> mumps_;
-    mutable std::vector<double> mumpsColumn_; // one right-hand side (the wrapper's interface)
-    Eigen::SparseMatrix<double> system_;      // Phi, both triangles (the CG solver refers to it)
+    // every right-hand side of one apply, column-major (the wrapper's interface: one MUMPS
+    // solve phase reads the factor once for all of them), and their (zero) residual allowances
+    mutable std::vector<double> mumpsColumns_;
+    mutable std::vector<double> mumpsAllowances_;
+    Eigen::SparseMatrix<double> system_; // Phi, both triangles (the CG solver refers to it)
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> ldlt_;
     Eigen::VectorXd diagonal_; // D of the LDLT
     Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper,
