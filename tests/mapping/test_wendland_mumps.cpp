@@ -65,3 +65,87 @@ TEST(WendlandMumps, AutoChoosesMumpsWhenMpiRuns)
     eigen.compute(s, t);
     EXPECT_EQ(eigen.solverInUse(), "direct");
 }
+
+// buildMappings(): the second target's mapping shares the first's source system (one
+// factorisation of Phi) and maps exactly as a mapping computed on its own; the first is not
+// disturbed by the second's applies (they share the solver). Every backend.
+class WendlandSharedSource : public ::testing::TestWithParam<std::string>
+{
+};
+
+TEST_P(WendlandSharedSource, SecondTargetMapsAsItsOwnMapping)
+{
+    const PointCloud s = solidCylinder(24), points = fluidCylinder(24), faces = fluidCylinder(20);
+    const auto p = wendland(GetParam());
+    const auto maps = buildMappings(p, s, {&points, &faces});
+    ASSERT_EQ(maps.size(), 2u);
+    const auto* first = dynamic_cast<const RbfWendlandC2*>(maps[0].get());
+    const auto* second = dynamic_cast<const RbfWendlandC2*>(maps[1].get());
+    ASSERT_NE(first, nullptr);
+    ASSERT_NE(second, nullptr);
+    EXPECT_TRUE(second->sharesSourceWith(*first));
+    EXPECT_EQ(second->sourceSize(), s.rows());
+    EXPECT_EQ(second->targetSize(), faces.rows());
+    EXPECT_EQ(second->solverInUse(), GetParam());
+
+    const auto ownFaces = buildMapping(p, s, faces);
+    const auto ownPoints = buildMapping(p, s, points);
+    EXPECT_FALSE(dynamic_cast<const RbfWendlandC2&>(*ownFaces).sharesSourceWith(*first));
+
+    const Values smooth = linearField(s).array().sin();
+    Values shared(faces.rows(), 3), own(faces.rows(), 3);
+    maps[1]->applyConsistent(smooth, shared);
+    ownFaces->applyConsistent(smooth, own);
+    EXPECT_LT((shared - own).norm() / own.norm(), 1e-12);
+    maps[1]->applyConsistent(linearField(s), shared);
+    EXPECT_LT(relativeMaxError(shared, linearField(faces)), 1e-10);
+
+    // conservative from the second target: the same nodal forces, total force to round-off
+    const Values g = faceForces(faces.rows());
+    Values fShared(s.rows(), 3), fOwn(s.rows(), 3);
+    maps[1]->applyConservative(g, fShared);
+    ownFaces->applyConservative(g, fOwn);
+    EXPECT_LT((fShared - fOwn).norm() / fOwn.norm(), 1e-12);
+    const double forceScale = g.cwiseAbs().colwise().sum().norm();
+    EXPECT_LT((fShared.colwise().sum() - g.colwise().sum()).norm() / forceScale, 1e-12);
+
+    // the first mapping after the second's applies
+    Values firstShared(points.rows(), 3), firstOwn(points.rows(), 3);
+    maps[0]->applyConsistent(smooth, firstShared);
+    ownPoints->applyConsistent(smooth, firstOwn);
+    EXPECT_LT((firstShared - firstOwn).norm() / firstOwn.norm(), 1e-12);
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, WendlandSharedSource,
+                         ::testing::Values("mumps", "direct", "iterative"));
+
+// A second target with a point outside every support is refused as buildMapping() refuses it,
+// and a strategy with nothing to share (nearest-neighbour) is computed on its own.
+TEST(BuildMappings, RefusesAStrayTargetAndFallsBackWithoutSharing)
+{
+    const PointCloud s = solidCylinder(24), points = fluidCylinder(24);
+    PointCloud stray = fluidCylinder(20);
+    stray.row(3) << 1.0, -2.0, 2.0; // on the axis 1 m beyond the end: 1.1 m from every node
+    auto p = wendland("direct");
+    p.overlapTolerance = 10.0; // let the overlap check pass: the mapping's own check refuses it
+    EXPECT_THROW(buildMappings(p, s, {&points, &stray}), std::runtime_error);
+    try
+    {
+        buildMappings(p, s, {&points, &stray});
+    }
+    catch (const std::runtime_error& e)
+    {
+        EXPECT_NE(std::string(e.what()).find("support_radius"), std::string::npos) << e.what();
+    }
+
+    MappingParameters nearest;
+    const PointCloud faces = fluidCylinder(20);
+    const auto maps = buildMappings(nearest, s, {&points, &faces});
+    ASSERT_EQ(maps.size(), 2u);
+    const auto own = buildMapping(nearest, s, faces);
+    const Values field = linearField(s);
+    Values a(faces.rows(), 3), b(faces.rows(), 3);
+    maps[1]->applyConsistent(field, a);
+    own->applyConsistent(field, b);
+    EXPECT_EQ(a, b);
+}

@@ -265,8 +265,11 @@ void CoupledDriver::Impl::setUp(int restartLevel)
         try
         {
             const auto& fi = fluid->interface();
-            displacementMap = mapping::buildMapping(params.mapping, solidNodes, fi.points);
-            forceMap = mapping::buildMapping(params.mapping, solidNodes, fi.faceCentres);
+            // one source (the wetted nodes) for both: its set-up is shared where it can be
+            auto maps =
+                mapping::buildMappings(params.mapping, solidNodes, {&fi.points, &fi.faceCentres});
+            displacementMap = std::move(maps[0]);
+            forceMap = std::move(maps[1]);
             log.open(restartLevel);
         }
         catch (const std::exception& e)

@@ -39,4 +39,23 @@ std::unique_ptr<Mapping> buildMapping(const MappingParameters& params, const Poi
     return mapping;
 }
 
+std::vector<std::unique_ptr<Mapping>> buildMappings(const MappingParameters& params,
+                                                    const PointCloud& source,
+                                                    const std::vector<const PointCloud*>& targets)
+{
+    std::vector<std::unique_ptr<Mapping>> mappings;
+    for (const PointCloud* target : targets)
+    {
+        if (mappings.empty())
+        {
+            mappings.push_back(buildMapping(params, source, *target));
+            continue;
+        }
+        checkOverlap(source, *target, params.overlapTolerance);
+        std::unique_ptr<Mapping> shared = mappings.front()->withSameSource(*target);
+        mappings.push_back(shared ? std::move(shared) : buildMapping(params, source, *target));
+    }
+    return mappings;
+}
+
 } // namespace fsi::mapping

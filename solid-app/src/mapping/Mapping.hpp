@@ -18,6 +18,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace fsi::mapping
 {
@@ -56,6 +57,15 @@ public:
     virtual void applyConservative(const Eigen::Ref<const Values>& targetValues,
                                    Eigen::Ref<Values> sourceValues) const = 0;
 
+    // A mapping from this one's source to `target` that shares this one's source-side set-up
+    // (e.g. the factorised source matrix), or nullptr where the strategy has nothing to share
+    // (the default; buildMappings() then computes it from scratch). Mappings that share a
+    // source serve one thread together. Pre: compute() done; throws as compute() does for a
+    // bad target.
+    virtual std::unique_ptr<Mapping> withSameSource(const PointCloud& /*target*/) const
+    {
+        return nullptr;
+    }
     Eigen::Index sourceSize() const { return sourceSize_; }
     Eigen::Index targetSize() const { return targetSize_; }
 
@@ -90,5 +100,11 @@ std::unique_ptr<Mapping> makeMapping(const MappingParameters& params);
 // validate + checkOverlap(source, target, params.overlapTolerance) + makeMapping + compute.
 std::unique_ptr<Mapping> buildMapping(const MappingParameters& params, const PointCloud& source,
                                       const PointCloud& target);
+// buildMapping() from one source to each of `targets` (e.g. the fluid's points and its face
+// centres), the source-side set-up done once where the strategy shares it (withSameSource()).
+// Each target's overlap is checked.
+std::vector<std::unique_ptr<Mapping>> buildMappings(const MappingParameters& params,
+                                                    const PointCloud& source,
+                                                    const std::vector<const PointCloud*>& targets);
 
 } // namespace fsi::mapping

@@ -7,6 +7,9 @@
 #include "mapping/KdTree.hpp"
 #include "mapping/RbfSupport.hpp"
 
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCholesky>
+
 #include <mpi.h>
 
 #include <algorithm>
@@ -103,7 +106,42 @@ Eigen::Index kernelTriplets(const KdTree& tree, const PointCloud& queries, doubl
     }
     return -1;
 }
+
+bool mpiRunning()
+{
+    int initialised = 0, finalised = 0;
+    MPI_Initialized(&initialised);
+    MPI_Finalized(&finalised);
+    return initialised && !finalised;
+}
 } // namespace
+
+struct RbfWendlandC2::SourceSystem
+{
+    // Normalises the source, builds Phi and factorises it with the backend `solver` chooses.
+    SourceSystem(const PointCloud& source, const WendlandParameters& params);
+    // params.solver resolved: "auto" is mumps with MPI running, else direct up to
+    // direct_max_points source points and iterative above.
+    static Backend chooseBackend(const WendlandParameters& params, Eigen::Index sourcePoints);
+
+    Backend backend = Backend::Direct;
+    detail::Normalisation normalisation;
+    PointCloud points;                  // normalised source
+    double rho = 0.0;                   // normalised support radius
+    KdTree tree;                        // over points
+    Eigen::SparseMatrix<double> system; // Phi, both triangles (the CG solver refers to it)
+    // MUMPS on MPI_COMM_SELF (the mapping runs on solid rank 0)
+    std::unique_ptr<linalg::SparseDirectSolver> mumps;
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> ldlt;
+    Eigen::VectorXd diagonal; // D of the LDLT
+    Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper,
+                             Eigen::IncompleteCholesky<double>>
+        cg;
+
+private:
+    // Factorises system (given as its triplets, both triangles) with MUMPS into mumps.
+    void factoriseWithMumps(const std::vector<Eigen::Triplet<double>>& triplets);
+};
 
 RbfWendlandC2::RbfWendlandC2(const WendlandParameters& params) : params_(params) {}
 
@@ -111,7 +149,7 @@ RbfWendlandC2::~RbfWendlandC2() = default;
 
 std::string RbfWendlandC2::solverInUse() const
 {
-    switch (backend_)
+    switch (source_ ? source_->backend : Backend::Direct)
     {
     case Backend::Mumps:
         return "mumps";
@@ -122,67 +160,90 @@ std::string RbfWendlandC2::solverInUse() const
     }
 }
 
-namespace
+Eigen::Index RbfWendlandC2::systemNonZeros() const
 {
-bool mpiRunning()
-{
-    int initialised = 0, finalised = 0;
-    MPI_Initialized(&initialised);
-    MPI_Finalized(&finalised);
-    return initialised && !finalised;
+    return source_ ? source_->system.nonZeros() : 0;
 }
-} // namespace
 
-void RbfWendlandC2::compute(const PointCloud& source, const PointCloud& target)
+bool RbfWendlandC2::iterative() const
 {
-    params_.validate();
+    return source_ && source_->backend == Backend::Iterative;
+}
+
+RbfWendlandC2::Backend RbfWendlandC2::SourceSystem::chooseBackend(const WendlandParameters& params,
+                                                                  Eigen::Index sourcePoints)
+{
     const bool withMpi = mpiRunning();
-    if (params_.solver == "mumps" && !withMpi)
+    if (params.solver == "mumps" && !withMpi)
         throw std::runtime_error("mapping rbf-wendland-c2: solver mumps needs MPI (solid-app "
                                  "initialises it); use solver direct or iterative here");
-    if (params_.solver == "mumps" || (params_.solver == "auto" && withMpi))
-        backend_ = Backend::Mumps;
-    else if (params_.solver == "iterative" ||
-             (params_.solver == "auto" && source.rows() > params_.directMaxPoints))
-        backend_ = Backend::Iterative;
-    else
-        backend_ = Backend::Direct;
-    detail::checkDistinctPoints(source, "rbf-wendland-c2");
-    const detail::Normalisation normalisation(source);
-    const PointCloud s = normalisation.apply(source), t = normalisation.apply(target);
-    const double rho = params_.supportRadius / normalisation.scale;
-    const KdTree tree(s);
+    if (params.solver == "mumps" || (params.solver == "auto" && withMpi))
+        return Backend::Mumps;
+    if (params.solver == "iterative" ||
+        (params.solver == "auto" && sourcePoints > params.directMaxPoints))
+        return Backend::Iterative;
+    return Backend::Direct;
+}
 
+RbfWendlandC2::SourceSystem::SourceSystem(const PointCloud& source,
+                                          const WendlandParameters& params)
+    : backend(chooseBackend(params, source.rows())), normalisation(source),
+      points(normalisation.apply(source)), rho(params.supportRadius / normalisation.scale),
+      tree(points)
+{
     std::vector<Eigen::Triplet<double>> triplets;
-    triplets.reserve(static_cast<size_t>(s.rows()) * 32);
-    kernelTriplets(tree, s, rho, triplets);
-    system_.resize(s.rows(), s.rows());
-    system_.setFromTriplets(triplets.begin(), triplets.end());
-    systemNonZeros_ = system_.nonZeros();
-    mumps_.reset();
-    if (backend_ == Backend::Mumps)
+    triplets.reserve(static_cast<size_t>(points.rows()) * 32);
+    kernelTriplets(tree, points, rho, triplets);
+    system.resize(points.rows(), points.rows());
+    system.setFromTriplets(triplets.begin(), triplets.end());
+    if (backend == Backend::Mumps)
         factoriseWithMumps(triplets);
-    else if (backend_ == Backend::Iterative)
+    else if (backend == Backend::Iterative)
     {
-        cg_.setTolerance(params_.iterativeTolerance);
-        cg_.setMaxIterations(std::max<Eigen::Index>(1000, s.rows()));
-        cg_.compute(system_);
+        cg.setTolerance(params.iterativeTolerance);
+        cg.setMaxIterations(std::max<Eigen::Index>(1000, points.rows()));
+        cg.compute(system);
     }
     else
     {
-        ldlt_.compute(system_);
-        diagonal_ = ldlt_.vectorD(); // vectorD() returns a copy: keep it
+        ldlt.compute(system);
+        diagonal = ldlt.vectorD(); // vectorD() returns a copy: keep it
     }
-    const Eigen::ComputationInfo info = backend_ == Backend::Iterative ? cg_.info()
-                                        : backend_ == Backend::Direct  ? ldlt_.info()
-                                                                       : Eigen::Success;
+    const Eigen::ComputationInfo info = backend == Backend::Iterative ? cg.info()
+                                        : backend == Backend::Direct  ? ldlt.info()
+                                                                      : Eigen::Success;
     if (info != Eigen::Success)
         throw std::runtime_error("mapping rbf-wendland-c2: factorisation of the RBF matrix "
                                  "failed; check for near-duplicate source points or change "
                                  "mapping.support_radius");
+}
 
-    triplets.clear();
-    const Eigen::Index lonely = kernelTriplets(tree, t, rho, triplets);
+void RbfWendlandC2::compute(const PointCloud& source, const PointCloud& target)
+{
+    params_.validate();
+    detail::checkDistinctPoints(source, "rbf-wendland-c2");
+    source_.reset();
+    source_ = std::make_shared<SourceSystem>(source, params_);
+    computeTarget(target);
+}
+
+std::unique_ptr<Mapping> RbfWendlandC2::withSameSource(const PointCloud& target) const
+{
+    if (!source_)
+        throw std::logic_error("RbfWendlandC2::withSameSource: compute() first");
+    auto mapping = std::make_unique<RbfWendlandC2>(params_);
+    mapping->source_ = source_;
+    mapping->computeTarget(target);
+    return mapping;
+}
+
+void RbfWendlandC2::computeTarget(const PointCloud& target)
+{
+    const SourceSystem& source = *source_;
+    const PointCloud t = source.normalisation.apply(target);
+    std::vector<Eigen::Triplet<double>> triplets;
+    triplets.reserve(static_cast<size_t>(t.rows()) * 32);
+    const Eigen::Index lonely = kernelTriplets(source.tree, t, source.rho, triplets);
     if (lonely >= 0)
     {
         char where[160];
@@ -194,17 +255,18 @@ void RbfWendlandC2::compute(const PointCloud& source, const PointCloud& target)
                                  number(params_.supportRadius) +
                                  " m; raise support_radius to a few solid node spacings");
     }
-    evaluation_.resize(t.rows(), s.rows());
+    evaluation_.resize(t.rows(), source.points.rows());
     evaluation_.setFromTriplets(triplets.begin(), triplets.end());
 
-    const detail::LinearPolynomial polynomial(s, t);
+    const detail::LinearPolynomial polynomial(source.points, t);
     sourceBasis_ = polynomial.sourceBasis;
     targetBasis_ = polynomial.targetBasis;
-    sourceSize_ = s.rows();
+    sourceSize_ = source.points.rows();
     targetSize_ = t.rows();
 }
 
-void RbfWendlandC2::factoriseWithMumps(const std::vector<Eigen::Triplet<double>>& triplets)
+void RbfWendlandC2::SourceSystem::factoriseWithMumps(
+    const std::vector<Eigen::Triplet<double>>& triplets)
 {
     // Phi is symmetric positive definite (Wendland C2 in 3-D, distinct points): LDL^T without
     // pivoting. Both triangles are passed: the wrapper keeps the lower one.
@@ -221,14 +283,14 @@ void RbfWendlandC2::factoriseWithMumps(const std::vector<Eigen::Triplet<double>>
     }
     try
     {
-        mumps_ = std::make_unique<linalg::SparseDirectSolver>(MPI_COMM_SELF, options);
-        mumps_->setPattern(static_cast<int>(system_.rows()), std::move(rows), std::move(cols));
-        mumps_->setValues(std::move(values));
-        mumps_->factorize();
+        mumps = std::make_unique<linalg::SparseDirectSolver>(MPI_COMM_SELF, options);
+        mumps->setPattern(static_cast<int>(system.rows()), std::move(rows), std::move(cols));
+        mumps->setValues(std::move(values));
+        mumps->factorize();
     }
     catch (const std::exception& e)
     {
-        mumps_.reset();
+        mumps.reset();
         throw std::runtime_error(std::string("mapping rbf-wendland-c2: MUMPS factorisation of "
                                              "the RBF matrix failed (") +
                                  e.what() +
@@ -239,36 +301,37 @@ void RbfWendlandC2::factoriseWithMumps(const std::vector<Eigen::Triplet<double>>
 
 void RbfWendlandC2::solve(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& solution) const
 {
-    if (backend_ == Backend::Mumps)
+    SourceSystem& source = *source_;
+    if (source.backend == Backend::Mumps)
     {
         // All columns in one solve phase: the factor is read once, not once per column.
         mumpsColumns_.resize(static_cast<std::size_t>(rhs.size())); // sized at the first apply
         mumpsAllowances_.assign(static_cast<std::size_t>(rhs.cols()), 0.0);
         Eigen::MatrixXd::Map(mumpsColumns_.data(), rhs.rows(), rhs.cols()) = rhs;
-        mumps_->solveMany(mumpsColumns_, static_cast<int>(rhs.cols()), mumpsAllowances_);
+        source.mumps->solveMany(mumpsColumns_, static_cast<int>(rhs.cols()), mumpsAllowances_);
         solution = Eigen::MatrixXd::Map(mumpsColumns_.data(), rhs.rows(), rhs.cols());
         return;
     }
-    if (backend_ == Backend::Direct)
+    if (source.backend == Backend::Direct)
     {
-        // ldlt_.solve() spelled out: its last step permutes in place, which allocates a mask.
+        // ldlt.solve() spelled out: its last step permutes in place, which allocates a mask.
         resizeWorkspace(permuted_, rhs.rows(), rhs.cols());
-        permuted_ = ldlt_.permutationP() * rhs;
-        ldlt_.matrixL().solveInPlace(permuted_);
-        permuted_.array().colwise() /= diagonal_.array();
-        ldlt_.matrixU().solveInPlace(permuted_);
-        solution = ldlt_.permutationPinv() * permuted_;
+        permuted_ = source.ldlt.permutationP() * rhs;
+        source.ldlt.matrixL().solveInPlace(permuted_);
+        permuted_.array().colwise() /= source.diagonal.array();
+        source.ldlt.matrixU().solveInPlace(permuted_);
+        solution = source.ldlt.permutationPinv() * permuted_;
         return;
     }
     lastIterations_ = 0;
     for (Eigen::Index j = 0; j < rhs.cols(); ++j)
     {
-        solution.col(j) = cg_.solve(rhs.col(j));
-        lastIterations_ = std::max(lastIterations_, cg_.iterations());
-        if (cg_.info() != Eigen::Success)
+        solution.col(j) = source.cg.solve(rhs.col(j));
+        lastIterations_ = std::max(lastIterations_, source.cg.iterations());
+        if (source.cg.info() != Eigen::Success)
             throw std::runtime_error(
                 "mapping rbf-wendland-c2: conjugate gradients did not converge in " +
-                std::to_string(cg_.iterations()) +
+                std::to_string(source.cg.iterations()) +
                 " iterations; use mapping.solver direct or a smaller support_radius");
     }
 }

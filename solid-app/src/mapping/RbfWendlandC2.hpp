@@ -21,18 +21,11 @@
 
 #include "mapping/Mapping.hpp"
 
-#include <Eigen/IterativeLinearSolvers>
-#include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
 #include <memory>
 #include <string>
 #include <vector>
-
-namespace fsi::linalg
-{
-class SparseDirectSolver;
-}
 
 namespace fsi::mapping
 {
@@ -67,49 +60,54 @@ public:
     ~RbfWendlandC2() override;
     std::string name() const override { return "rbf-wendland-c2"; }
     void compute(const PointCloud& source, const PointCloud& target) override;
+    // Shares this mapping's source system (Phi, its factorisation, the search tree): only the
+    // evaluation matrix and the polynomial of the new target are built.
+    std::unique_ptr<Mapping> withSameSource(const PointCloud& target) const override;
     void applyConsistent(const Eigen::Ref<const Values>& sourceValues,
                          Eigen::Ref<Values> targetValues) const override;
     void applyConservative(const Eigen::Ref<const Values>& targetValues,
                            Eigen::Ref<Values> sourceValues) const override;
 
     // Non-zeros of the source matrix Phi and of the evaluation matrix Phi_ts (for the log).
-    Eigen::Index systemNonZeros() const { return systemNonZeros_; }
+    Eigen::Index systemNonZeros() const;
     Eigen::Index evaluationNonZeros() const { return evaluation_.nonZeros(); }
-    bool iterative() const { return backend_ == Backend::Iterative; }
+    bool iterative() const;
+    // True when both were computed from one source system (withSameSource()).
+    bool sharesSourceWith(const RbfWendlandC2& other) const
+    {
+        return source_ && source_ == other.source_;
+    }
     // The solver compute() chose: "mumps", "direct" or "iterative".
     std::string solverInUse() const;
     // CG iterations of the last solve (0 for the direct solver).
     Eigen::Index lastIterations() const { return lastIterations_; }
 
 private:
-    void solve(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& solution) const;
-    // Factorises system_ (given as its triplets, both triangles) with MUMPS into mumps_.
-    void factoriseWithMumps(const std::vector<Eigen::Triplet<double>>& triplets);
-
+    // What depends on the source points only (RbfWendlandC2.cpp): shared by the mappings of
+    // one source to several targets, so that Phi is factorised once.
+    struct SourceSystem;
     enum class Backend
     {
         Mumps,
         Direct,
         Iterative
     };
+    // The evaluation matrix Phi_ts and the polynomial at `target` (source_ set). Throws when a
+    // target point has no source point within the support radius.
+    void computeTarget(const PointCloud& target);
+    void solve(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& solution) const;
+
     WendlandParameters params_;
-    Backend backend_ = Backend::Direct;
-    // MUMPS on MPI_COMM_SELF (the mapping runs on solid rank 0); mutable: a solve is const here
-    mutable std::unique_ptr<linalg::SparseDirectSolver> mumps_;
+    // Shared with the mappings made by withSameSource(); its solvers' state (MUMPS, CG
+    // iterations) changes in a const apply, so mappings sharing it serve one thread together.
+    std::shared_ptr<SourceSystem> source_;
     // every right-hand side of one apply, column-major (the wrapper's interface: one MUMPS
     // solve phase reads the factor once for all of them), and their (zero) residual allowances
     mutable std::vector<double> mumpsColumns_;
     mutable std::vector<double> mumpsAllowances_;
-    Eigen::SparseMatrix<double> system_; // Phi, both triangles (the CG solver refers to it)
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower> ldlt_;
-    Eigen::VectorXd diagonal_; // D of the LDLT
-    Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper,
-                             Eigen::IncompleteCholesky<double>>
-        cg_;
     mutable Eigen::Index lastIterations_ = 0;
     Eigen::SparseMatrix<double, Eigen::RowMajor> evaluation_; // Phi_ts, N_t x N_s
     Eigen::MatrixXd sourceBasis_, targetBasis_;               // Q (N_s x r), Q_t (N_t x r)
-    Eigen::Index systemNonZeros_ = 0;
     mutable Eigen::MatrixXd coefficients_, residual_, polynomial_, projected_,
         permuted_; // workspace
 };
