@@ -67,7 +67,10 @@
 #   --max-fluid-iterations N                cap on the SIMPLE iterations of one coupled fluid solve
 #                                           (fsiDict coupled/maxIterations; default the case's 400)
 #   --restart                               continue an interrupted run in this folder (same
-#                                           options): finished runs are kept, an interrupted one
+#                                           options): finished runs are kept (a viscoelastic one
+#                                           continues when --end is later than its last level:
+#                                           a history extended, its summary.csv kept as
+#                                           summary.csv.partN), an interrupted one
 #                                           continues from results/<run>/checkpoint/latest
 #                                           (scripts/fsi-restart-fluid + --restart), a run that
 #                                           never started starts; logs of earlier parts are kept
@@ -174,16 +177,27 @@ case "$material" in
   *) runs=("$material") ;;
 esac
 mkdir -p "$run/results"
+# endsLater RUN OUT: RUN is the viscoelastic run and --end lies beyond its last checkpointed level
+endsLater() {
+  [ "$1" = viscoelastic ] && [ -n "$end" ] && [ -f "$2/checkpoint/latest" ] &&
+      awk -v e="$end" -v t="$(sed -n 's/^time //p' "$2/checkpoint/latest")" \
+          'BEGIN{exit !(t != "" && e + 0 > t + 1e-6 * (1 + t))}'
+}
 
 for m in "${runs[@]}"; do
   short=$m; [ "$m" = viscoelastic ] && short=visco
   fluid=$run/fluid-$short
   out=$run/results/$short
   resume=()
-  if [ "$restart" = 1 ] && [ -f "$out/summary.csv" ]; then
+  if [ "$restart" = 1 ] && [ -f "$out/summary.csv" ] && ! endsLater "$m" "$out"; then
     log "$m: finished before the restart, kept"
     continue
   elif [ "$restart" = 1 ] && [ -f "$out/checkpoint/latest" ]; then
+    if [ -f "$out/summary.csv" ]; then
+      k=1; while [ -e "$out/summary.csv.part$k" ]; do k=$((k + 1)); done
+      log "$m: finished at t = $(sed -n 's/^time //p' "$out/checkpoint/latest") s; extended to --end $end s (its summary kept as summary.csv.part$k)"
+      mv "$out/summary.csv" "$out/summary.csv.part$k"
+    fi
     log "$m: continuing from $(sed -n 's/^folder //p' "$out/checkpoint/latest") of $out/checkpoint"
     "$FSI_ROOT/scripts/fsi-restart-fluid" "$fluid" "$out"
     k=1; while [ -e "$run/log.$short.part$k" ]; do k=$((k + 1)); done

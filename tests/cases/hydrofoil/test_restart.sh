@@ -6,8 +6,11 @@
 # run once uninterrupted; a second run is killed (SIGKILL to its fluid-app processes, found by
 # this run's case path) once level 1 is checkpointed, then continued with run.sh --restart. Every
 # level's tip AOA must match within 1e-4 deg and Fy within 1e-5 relative (the coupling tolerance
-# 5e-6 m of interface displacement). Measured 2026-11-22: 5.9e-6 deg, 3.4e-6. Needs fluid-app and
-# solid-app on PATH and FSI_ROOT; meshes the coarse preset unless --mesh-from is given.
+# 5e-6 m of interface displacement). Measured 2026-11-22: 5.9e-6 deg, 3.4e-6. Then the finished,
+# restarted run is extended with run.sh --restart --end 4: it must continue from its 2 s level to
+# a last level at 4 s, keep every earlier row of history.csv unchanged and its summary.csv as
+# summary.csv.part1. Needs fluid-app and solid-app on PATH and FSI_ROOT; meshes the coarse preset
+# unless --mesh-from is given.
 set -euo pipefail
 work=${1:?usage: test_restart.sh WORK [--mesh-from RUNDIR]}
 shift
@@ -53,5 +56,29 @@ worst_fy = max(abs(float(x["Fy"]) - float(y["Fy"])) / abs(float(x["Fy"])) for x,
 print("largest difference: %s %.1e deg, Fy %.1e relative" % (angle, worst_deg, worst_fy))
 if worst_deg > 1e-4 or worst_fy > 1e-5:
     sys.exit("FAIL: the restarted run does not reproduce the uninterrupted one")
-print("PASS")
+print("PASS: restart")
+PY
+cp "$work/kill/results/visco/history.csv" "$work/history-2s.csv"
+(cd "$work/kill" && ./run.sh --material viscoelastic --end 4 "${meshArgs[@]}" --restart > out.extend.txt 2>&1) ||
+  { echo "FAIL: the extension failed:"; tail -5 "$work/kill/out.extend.txt"; exit 1; }
+grep -q "extended to --end 4 s" "$work/kill/out.extend.txt" ||
+  { echo "FAIL: run.sh did not extend the finished run:"; tail -5 "$work/kill/out.extend.txt"; exit 1; }
+[ -f "$work/kill/results/visco/summary.csv.part1" ] && [ -f "$work/kill/results/visco/summary.csv" ] ||
+  { echo "FAIL: summary.csv.part1 (the 2 s run's) and a new summary.csv expected"; exit 1; }
+"${FSI_PYTHON:-/usr/bin/python3}" - "$work/history-2s.csv" "$work/kill/results/visco/history.csv" <<'PY'
+import csv, sys
+before, after = (list(csv.DictReader(open(p))) for p in sys.argv[1:])
+if abs(float(after[-1]["time"]) - 4.0) > 1e-9 or len(after) <= len(before):
+    sys.exit("FAIL: the extended history ends at %s s with %d levels (%d before)"
+             % (after[-1]["time"], len(after), len(before)))
+for x, y in zip(before, after):
+    for k in x:
+        try:
+            a, b = float(x[k]), float(y[k])
+        except ValueError:
+            continue
+        if abs(a - b) > 1e-12 * (1 + abs(a)):
+            sys.exit("FAIL: level %s's %s changed in the extension: %s -> %s" % (x["level"], k, x[k], y[k]))
+print("PASS: extended from %s s to 4 s in %d more levels, earlier rows kept"
+      % (before[-1]["time"], len(after) - len(before)))
 PY
