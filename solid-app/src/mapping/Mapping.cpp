@@ -32,28 +32,26 @@ std::unique_ptr<Mapping> makeMapping(const MappingParameters& params)
 std::unique_ptr<Mapping> buildMapping(const MappingParameters& params, const PointCloud& source,
                                       const PointCloud& target)
 {
-    params.validate();
-    checkOverlap(source, target, params.overlapTolerance);
-    std::unique_ptr<Mapping> mapping = makeMapping(params);
-    mapping->compute(source, target);
-    return mapping;
+    return std::move(buildMappings(params, source, {&target}).front());
 }
 
 std::vector<std::unique_ptr<Mapping>> buildMappings(const MappingParameters& params,
                                                     const PointCloud& source,
                                                     const std::vector<const PointCloud*>& targets)
 {
+    params.validate();
     std::vector<std::unique_ptr<Mapping>> mappings;
     for (const PointCloud* target : targets)
     {
-        if (mappings.empty())
-        {
-            mappings.push_back(buildMapping(params, source, *target));
-            continue;
-        }
         checkOverlap(source, *target, params.overlapTolerance);
-        std::unique_ptr<Mapping> shared = mappings.front()->withSameSource(*target);
-        mappings.push_back(shared ? std::move(shared) : buildMapping(params, source, *target));
+        std::unique_ptr<Mapping> mapping =
+            mappings.empty() ? nullptr : mappings.front()->withSameSource(*target);
+        if (!mapping)
+        {
+            mapping = makeMapping(params);
+            mapping->compute(source, *target);
+        }
+        mappings.push_back(std::move(mapping));
     }
     return mappings;
 }

@@ -101,8 +101,8 @@ std::unique_ptr<Mapping> makeMapping(const MappingParameters& params);
 std::unique_ptr<Mapping> buildMapping(const MappingParameters& params, const PointCloud& source,
                                       const PointCloud& target);
 // buildMapping() from one source to each of `targets` (e.g. the fluid's points and its face
-// centres), the source-side set-up done once where the strategy shares it (withSameSource()).
-// Each target's overlap is checked.
+// centres; non-null, at least one), the source-side set-up done once where the strategy shares
+// it (withSameSource()). Each target's overlap is checked.
 std::vector<std::unique_ptr<Mapping>> buildMappings(const MappingParameters& params,
                                                     const PointCloud& source,
                                                     const std::vector<const PointCloud*>& targets);
