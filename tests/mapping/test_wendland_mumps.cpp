@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // rbf-wendland-c2 with solver mumps (MUMPS LDL^T on MPI_COMM_SELF): the same mapping as Eigen's
-// direct LDLT to round-off, with the exact properties (linear fields, total force and moment).
+// direct LDLT to round-off, with the exact properties (linear fields, total force and moment);
+// and buildMappings()' shared source system on every backend (mumps, direct, iterative).
 // MPI is initialised by tests/linalg/MpiEnvironment.cpp (one rank).
 #include "Clouds.hpp"
 

@@ -222,7 +222,7 @@ void RbfWendlandC2::compute(const PointCloud& source, const PointCloud& target)
 {
     params_.validate();
     detail::checkDistinctPoints(source, "rbf-wendland-c2");
-    source_.reset();
+    source_.reset(); // a recompute frees the old factor first (unless another mapping shares it)
     source_ = std::make_shared<SourceSystem>(source, params_);
     computeTarget(target);
 }
