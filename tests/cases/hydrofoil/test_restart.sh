@@ -9,8 +9,9 @@
 # 5e-6 m of interface displacement). Measured 2026-11-22: 5.9e-6 deg, 3.4e-6. Then the finished,
 # restarted run is extended with run.sh --restart --end 4: it must continue from its 2 s level to
 # a last level at 4 s, keep every earlier row of history.csv unchanged and its summary.csv as
-# summary.csv.part1. Needs fluid-app and solid-app on PATH and FSI_ROOT; meshes the coarse preset
-# unless --mesh-from is given.
+# summary.csv.part1. Last, scripts/converged-flow on the uninterrupted run's 2 s level: the
+# accepted force within 1 % of the converged flow at that geometry. Needs fluid-app and solid-app
+# on PATH and FSI_ROOT; meshes the coarse preset unless --mesh-from is given.
 set -euo pipefail
 work=${1:?usage: test_restart.sh WORK [--mesh-from RUNDIR]}
 shift
@@ -81,4 +82,30 @@ for x, y in zip(before, after):
             sys.exit("FAIL: level %s's %s changed in the extension: %s -> %s" % (x["level"], k, x[k], y[k]))
 print("PASS: extended from %s s to 4 s in %d more levels, earlier rows kept"
       % (before[-1]["time"], len(after) - len(before)))
+PY
+# scripts/converged-flow on the uninterrupted run's last level (2 s): the flow at that frozen
+# geometry settles (range <= 1e-5 |F| after the 100th of at most 200 SIMPLE iterations) and the
+# force the run accepted lies within 1 % of it (measured 2026-12-04: 0.029 %; the medium preset's
+# 360 s level: 0.15 %).
+"$FSI_ROOT/scripts/converged-flow" "$work/ref/fluid-visco" --iterations 200 --out "$work/converged-2s" \
+  > "$work/converged-2s.txt" 2>&1 || { echo "FAIL: converged-flow:"; tail -5 "$work/converged-2s.txt"; exit 1; }
+cat "$work/converged-2s.txt"
+"${FSI_PYTHON:-/usr/bin/python3}" - "$work/converged-2s.txt" "$work/converged-2s/postProcessing/fsi/rigidIterations.csv" <<'PY'
+import csv, math, sys
+text, rigid = sys.argv[1:]
+line = next(l for l in open(text) if l.startswith("converged-flow summary:"))
+v = dict(kv.split("=") for kv in line.split(":", 1)[1].split())
+if abs(float(v["time"]) - 2.0) > 1e-9:
+    sys.exit("FAIL: converged-flow took time %s, the run's last level is 2 s" % v["time"])
+conv = [float(v["converged_f" + c]) for c in "xyz"]
+norm = math.sqrt(sum(c * c for c in conv))
+tail = list(csv.DictReader(open(rigid)))[100:]
+spread = max(math.sqrt(sum((float(r["F" + c]) - m) ** 2 for c, m in zip("xyz", conv))) for r in tail)
+print("converged-flow: accepted vs converged %.2e |F|, converged spread %.1e |F|"
+      % (float(v["error_rel"]), spread / norm))
+if not spread <= 1e-5 * norm:
+    sys.exit("FAIL: the frozen-geometry flow did not settle")
+if not float(v["error_rel"]) <= 0.01:
+    sys.exit("FAIL: the accepted flow is %s |F| from the converged one (> 1 %%)" % v["error_rel"])
+print("PASS: converged-flow")
 PY
