@@ -3,7 +3,8 @@
 # tests/cases/hydrofoil/test_run_options.sh WORK
 #
 # run.sh refuses bad values of --band-tolerance, --band-mean-tolerance, --band-reference-force,
-# --band-window, --oscillation-window, --fluid-tolerance and --max-fluid-iterations before it writes anything:
+# --band-window, --oscillation-window, --fluid-tolerance, --coupling-tolerance and
+# --max-fluid-iterations before it writes anything:
 # exit 2, one line on stderr naming the option, no mesh/ or results/ in the run folder. Needs
 # FSI_ROOT (the repository); no OpenFOAM run, no MPI.
 set -uo pipefail
@@ -38,5 +39,7 @@ check --band-reference-force 0
 check --band-reference-force 1N
 check --oscillation-window 2
 check --band-window 5
+check --coupling-tolerance 0
+check --coupling-tolerance 5e-3   # a length in m: 5 mm is no tolerance
 check --band-window 300   # 2 x 300 > the case's cap of 400
 exit $fail
