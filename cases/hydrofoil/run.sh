@@ -61,6 +61,12 @@
 #                                           SIMPLE iterations (fsiDict coupled/oscillationWindow; default
 #                                           the case's 0, off; 3..1000, about one period): no stop at a
 #                                           turning point (README, "Honest fluid solves")
+#   --warm-start-flux interpolated|kept     the flux of each coupled solve's first iteration after the
+#                                           motion (fsiDict coupled/warmStart/flux; default the case's
+#                                           interpolated, fvc::flux(U)); kept: the last solve's flux
+#                                           corrected for the moved faces: no pressure-velocity ringing,
+#                                           slower monotone solves (README, "A medium reference
+#                                           history"; fluid-app/README.md)
 #   --fluid-tolerance F                     the fluid's final and largest force accuracy (the solid
 #                                           configs' coupling.fluid_accuracy final.force_tolerance and
 #                                           max_force_tolerance; default 5e-5)
@@ -88,7 +94,7 @@ set -euo pipefail
 source "$FSI_ROOT/scripts/env.sh"
 
 preset=coarse material=both npf=2 nps=2 launch=mpmd tc=0.12 cli=0.5 end="" timeout=900 meshFrom="" restart=0
-flow=laminar scheme=upwind algorithm="" fluidMesh=snappy initFrom="" band="" maxFluidIt="" fluidTol="" couplingTol="" bandWindow="" bandMean="" bandRef="" oscWindow=""
+flow=laminar scheme=upwind algorithm="" fluidMesh=snappy initFrom="" band="" maxFluidIt="" fluidTol="" couplingTol="" bandWindow="" bandMean="" bandRef="" oscWindow="" wsFlux=""
 die() { echo "error: hydrofoil/run.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -112,6 +118,7 @@ while [ $# -gt 0 ]; do
     --band-reference-force) [ $# -ge 2 ] || die "--band-reference-force needs a value in N"; bandRef=$2; shift 2 ;;
     --oscillation-window) [ $# -ge 2 ] || die "--oscillation-window needs a value"; oscWindow=$2; shift 2 ;;
     --band-window) [ $# -ge 2 ] || die "--band-window needs a value"; bandWindow=$2; shift 2 ;;
+    --warm-start-flux) [ $# -ge 2 ] || die "--warm-start-flux needs interpolated or kept"; wsFlux=$2; shift 2 ;;
     --fluid-tolerance) [ $# -ge 2 ] || die "--fluid-tolerance needs a value"; fluidTol=$2; shift 2 ;;
     --coupling-tolerance) [ $# -ge 2 ] || die "--coupling-tolerance needs a value in m"; couplingTol=$2; shift 2 ;;
     --max-fluid-iterations) [ $# -ge 2 ] || die "--max-fluid-iterations needs a value"; maxFluidIt=$2; shift 2 ;;
@@ -134,6 +141,7 @@ positive() { awk -v v="$1" -v u="${2:-}" 'BEGIN{exit !(v ~ /^[0-9.eE+-]+$/ && v 
     die "--band-reference-force '$bandRef' must be a force in N > 0, e.g. 1 (the t = 0 lift)"
 [ -z "$oscWindow" ] || { [[ "$oscWindow" =~ ^[1-9][0-9]*$ ]] && [ "$oscWindow" -ge 3 ] && [ "$oscWindow" -le 1000 ]; } ||
     die "--oscillation-window '$oscWindow' must be an integer in 3..1000 (about one period of the force's oscillation)"
+case "$wsFlux" in ""|interpolated|kept) ;; *) die "--warm-start-flux must be interpolated or kept (got '$wsFlux')" ;; esac
 [ -z "$fluidTol" ] || positive "$fluidTol" 1 ||
     die "--fluid-tolerance '$fluidTol' must be a number in (0, 1), e.g. 3e-3"
 if [ -n "$fluidTol" ]; then
@@ -224,7 +232,8 @@ for m in "${runs[@]}"; do
         ${algorithm:+--algorithm "$algorithm"} ${initFrom:+--init-from "$initFrom"}
     # the options given, as fsiDict coupled/KEY
     for kv in bandTolerance="$band" maxIterations="$maxFluidIt" bandMeanTolerance="$bandMean" \
-              bandReferenceForce="$bandRef" oscillationWindow="$oscWindow" bandWindow="$bandWindow"; do
+              bandReferenceForce="$bandRef" oscillationWindow="$oscWindow" bandWindow="$bandWindow" \
+              warmStart/flux="$wsFlux"; do
       [ -z "${kv#*=}" ] || foamDictionary "$fluid/system/fsiDict" -entry "coupled/${kv%%=*}" -set "${kv#*=}" > /dev/null
     done
   fi

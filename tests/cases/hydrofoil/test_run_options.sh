@@ -3,7 +3,7 @@
 # tests/cases/hydrofoil/test_run_options.sh WORK
 #
 # run.sh refuses bad values of --band-tolerance, --band-mean-tolerance, --band-reference-force,
-# --band-window, --oscillation-window, --fluid-tolerance, --coupling-tolerance and
+# --band-window, --oscillation-window, --fluid-tolerance, --coupling-tolerance, --warm-start-flux and
 # --max-fluid-iterations before it writes anything:
 # exit 2, one line on stderr naming the option, no mesh/ or results/ in the run folder. Needs
 # FSI_ROOT (the repository); no OpenFOAM run, no MPI.
@@ -40,6 +40,7 @@ check --band-reference-force 1N
 check --oscillation-window 2
 check --band-window 5
 check --coupling-tolerance 0
+check --warm-start-flux copied
 check --coupling-tolerance 5e-3   # a length in m: 5 mm is no tolerance
 check --band-window 300   # 2 x 300 > the case's cap of 400
 exit $fail
