@@ -72,9 +72,9 @@
 #                                           max_force_tolerance; default 5e-5)
 #   --coupling-tolerance T                  interface tolerance |r|/sqrt(n) < T [m] (the solid configs'
 #                                           coupling.convergence.absolute_tolerance; default 5e-6).
-#                                           2e-6 puts the medium history within 0.5 % of its reference
-#                                           in lift (5e-6: 0.78 %) at 2.3x the SIMPLE iterations
-#                                           (README, "Where the medium lift miss comes from")
+#                                           2e-6 put the medium history within 0.5 % of its reference
+#                                           in lift (0.46 %, one run; 5e-6: 0.78 %) at 2.3x the SIMPLE
+#                                           iterations (README, "Where the medium lift miss comes from")
 #   --max-fluid-iterations N                cap on the SIMPLE iterations of one coupled fluid solve
 #                                           (fsiDict coupled/maxIterations; default the case's 400)
 #   --restart                               continue an interrupted run in this folder (same
