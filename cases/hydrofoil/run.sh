@@ -71,10 +71,10 @@
 #                                           configs' coupling.fluid_accuracy final.force_tolerance and
 #                                           max_force_tolerance; default 5e-5)
 #   --coupling-tolerance T                  interface tolerance |r|/sqrt(n) < T [m] (the solid configs'
-#                                           coupling.convergence.absolute_tolerance; default 5e-6).
-#                                           2e-6 put the medium history within 0.5 % of its reference
-#                                           in lift (0.46 %, one run; 5e-6: 0.78 %) at 2.3x the SIMPLE
-#                                           iterations (README, "Where the medium lift miss comes from")
+#                                           coupling.convergence.absolute_tolerance; default 5e-6,
+#                                           within the equal-accuracy targets on coarse and medium;
+#                                           2e-6 costs 2.3x the SIMPLE iterations on medium: README,
+#                                           "The first medium reference was off")
 #   --max-fluid-iterations N                cap on the SIMPLE iterations of one coupled fluid solve
 #                                           (fsiDict coupled/maxIterations; default the case's 400)
 #   --restart                               continue an interrupted run in this folder (same
