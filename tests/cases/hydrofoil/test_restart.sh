@@ -84,7 +84,7 @@ print("PASS: extended from %s s to 4 s in %d more levels, earlier rows kept"
       % (before[-1]["time"], len(after) - len(before)))
 PY
 # scripts/converged-flow on the uninterrupted run's last level (2 s): the flow at that frozen
-# geometry settles (range <= 1e-5 |F| after the 100th of at most 200 SIMPLE iterations) and the
+# geometry settles (range <= 1e-5 |F| over the second half of its <= 200 SIMPLE iterations) and the
 # force the run accepted lies within 1 % of it (measured 2026-12-04: 0.029 %; the medium preset's
 # 360 s level: 0.15 %).
 "$FSI_ROOT/scripts/converged-flow" "$work/ref/fluid-visco" --iterations 200 --out "$work/converged-2s" \
@@ -99,7 +99,8 @@ if abs(float(v["time"]) - 2.0) > 1e-9:
     sys.exit("FAIL: converged-flow took time %s, the run's last level is 2 s" % v["time"])
 conv = [float(v["converged_f" + c]) for c in "xyz"]
 norm = math.sqrt(sum(c * c for c in conv))
-tail = list(csv.DictReader(open(rigid)))[100:]
+rows = list(csv.DictReader(open(rigid)))
+tail = rows[len(rows) // 2:]   # the part converged-flow averages (it may stop before 200)
 spread = max(math.sqrt(sum((float(r["F" + c]) - m) ** 2 for c, m in zip("xyz", conv))) for r in tail)
 print("converged-flow: accepted vs converged %.2e |F|, converged spread %.1e |F|"
       % (float(v["error_rel"]), spread / norm))
