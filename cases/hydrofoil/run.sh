@@ -144,20 +144,23 @@ positive() { awk -v v="$1" -v u="${2:-}" 'BEGIN{exit !(v ~ /^[0-9.eE+-]+$/ && v 
 case "$wsFlux" in ""|interpolated|kept) ;; *) die "--warm-start-flux must be interpolated or kept (got '$wsFlux')" ;; esac
 [ -z "$fluidTol" ] || positive "$fluidTol" 1 ||
     die "--fluid-tolerance '$fluidTol' must be a number in (0, 1), e.g. 3e-3"
-if [ -n "$fluidTol" ]; then
+# configsHave OPTION WHAT PATTERN...: every solid config has a line matching each PATTERN (the
+# lines OPTION edits below), or stop naming the config, WHAT and the fix
+configsHave() {
+  local option=$1 what=$2 y p; shift 2
   for y in solid/baseline.yaml solid/relaxed.yaml solid/viscoelastic.yaml; do
-    grep -q '^    final: {force_tolerance: ' "$y" && grep -q '^    max_force_tolerance: ' "$y" ||
-        die "--fluid-tolerance: $y has no 'final: {force_tolerance: ...}' / 'max_force_tolerance:' line under coupling.fluid_accuracy (restore it from cases/hydrofoil/solid)"
+    for p in "$@"; do
+      grep -q "$p" "$y" || die "$option: $y has no $what (restore it from cases/hydrofoil/solid)"
+    done
   done
-fi
+}
+[ -z "$fluidTol" ] || configsHave --fluid-tolerance \
+    "'final: {force_tolerance: ...}' / 'max_force_tolerance:' line under coupling.fluid_accuracy" \
+    '^    final: {force_tolerance: ' '^    max_force_tolerance: '
 [ -z "$couplingTol" ] || positive "$couplingTol" 1e-3 ||
     die "--coupling-tolerance '$couplingTol' must be a length in m in (0, 1e-3), e.g. 2e-6"
-if [ -n "$couplingTol" ]; then
-  for y in solid/baseline.yaml solid/relaxed.yaml solid/viscoelastic.yaml; do
-    grep -q '^    absolute_tolerance: ' "$y" ||
-        die "--coupling-tolerance: $y has no 'absolute_tolerance:' line under coupling.convergence (restore it from cases/hydrofoil/solid)"
-  done
-fi
+[ -z "$couplingTol" ] || configsHave --coupling-tolerance \
+    "'absolute_tolerance:' line under coupling.convergence" '^    absolute_tolerance: '
 [ -z "$maxFluidIt" ] || { [[ "$maxFluidIt" =~ ^[1-9][0-9]*$ ]] && [ "$maxFluidIt" -ge 200 ]; } ||
     die "--max-fluid-iterations '$maxFluidIt' must be an integer >= 200 (the band rule's two blocks of 100)"
 if [ -n "$bandWindow" ]; then
