@@ -54,7 +54,8 @@ TEST(PatchTest, LinearFieldExactConstantStress)
     epsV << eps(0, 0), eps(1, 1), eps(2, 2), 2 * eps(0, 1), 2 * eps(1, 2), 2 * eps(0, 2);
     const material::Vector6 sigma = law->initialTangent() * epsV;
     // The linear field prescribed on the group "boundary" of m, solved, compared inside.
-    const auto check = [&](const mesh::Mesh& m, const std::string& name) {
+    const auto check = [&](const mesh::Mesh& m, const std::string& name)
+    {
         fe::ProblemDefinition p;
         fe::PrescribedDisplacement d;
         d.surface = "boundary";
@@ -79,15 +80,17 @@ TEST(PatchTest, LinearFieldExactConstantStress)
             stressErr = std::max(stressErr, (s - sigma).norm() / sigma.norm());
         EXPECT_LT(err, 1e-12) << name;
         EXPECT_LT(stressErr, 1e-9) << name;
-        std::printf("patch test %-8s %4d cells: max |u - u_exact| = %.2e m, max stress error %.2e\n",
-                    name.c_str(), m.cells.size(), err, stressErr);
+        std::printf(
+            "patch test %-8s %4d cells: max |u - u_exact| = %.2e m, max stress error %.2e\n",
+            name.c_str(), m.cells.size(), err, stressErr);
     };
     for (TestCell cell : allCells)
         check(skewedBlock(cell), fsi::testing::testCellName(cell));
     for (int q : {0, 15, 18})
     {
         const auto file = fsi::testing::makePrismBlock(fsi::testing::tempFile("prisms.msh"), q);
-        check(mesh::readGmsh(file, {"solid", {"boundary"}}, true), "Prism" + std::to_string(q ? q : 6));
+        check(mesh::readGmsh(file, {"solid", {"boundary"}}, true),
+              "Prism" + std::to_string(q ? q : 6));
     }
 }
 
@@ -273,6 +276,41 @@ TEST(Cantilever, CoarseTipDeflectionAndFactorizationReuse)
     EXPECT_EQ(ud.size(), x.size());
 }
 
+// wettedFaces(): the wetted surface's faces over wetted-node indices (the nearest-projection
+// mapping's source surface): each index names the face's own mesh node.
+TEST(WettedFaces, IndexTheWettedNodesInTheirOrder)
+{
+    fsi::testing::BlockSpec spec;
+    spec.size = {1.0, 0.2, 0.2};
+    spec.cells = {5, 2, 2};
+    const std::string file =
+        fsi::testing::makeBlockMesh(fsi::testing::tempFile("wetted.msh"), TestCell::Tet10, spec);
+    const mesh::Mesh m = mesh::readGmsh(file, {"solid", {"x0", "x1"}}, true);
+    const auto law =
+        material::makeMaterial(fsi::testing::elastic(1e6, 0.3), material::Kinematics::SmallStrain);
+    fe::ProblemDefinition p;
+    p.clamped = {"x0"};
+    p.wetted = "x1";
+    fe::StructuralSolver solver(MPI_COMM_WORLD, m, *law, p);
+    const mesh::CellList local = solver.wettedFaces();
+    const mesh::CellList& global = m.surface("x1").faces;
+    ASSERT_EQ(local.size(), global.size());
+    ASSERT_GT(local.size(), 0);
+    const auto& wetted = solver.wettedNodes();
+    for (int f = 0; f < local.size(); ++f)
+    {
+        EXPECT_EQ(local.types[std::size_t(f)], global.types[std::size_t(f)]);
+        ASSERT_EQ(local.numNodes(f), global.numNodes(f));
+        for (int a = 0; a < local.numNodes(f); ++a)
+        {
+            const int k = local.nodes(f)[a];
+            ASSERT_GE(k, 0);
+            ASSERT_LT(k, int(wetted.size()));
+            EXPECT_EQ(wetted[std::size_t(k)], global.nodes(f)[a]);
+        }
+    }
+}
+
 // acceptLevel() refuses a level whose solve did not converge (never silently accepted).
 TEST(Newton, StallIsReportedNotAccepted)
 {
@@ -303,13 +341,15 @@ TEST(Newton, StallIsReportedNotAccepted)
 TEST(ElementKernel, TinyStrainsKeepTheirDigits)
 {
     Eigen::Matrix3d H;
-    H << 1.234567890123e-12, 2.0e-13, -3.0e-13, 4.0e-13, -5.55e-12, 6.0e-13, 7.0e-13, 8.0e-13, 9.87e-12;
+    H << 1.234567890123e-12, 2.0e-13, -3.0e-13, 4.0e-13, -5.55e-12, 6.0e-13, 7.0e-13, 8.0e-13,
+        9.87e-12;
     for (auto kin : {material::Kinematics::SmallStrain, material::Kinematics::TotalLagrangian})
     {
         const auto e = fe::strainFromH(H, kin);
         const Eigen::Matrix3d sym = 0.5 * (H + H.transpose());
-        const Eigen::Matrix3d exact =
-            kin == material::Kinematics::SmallStrain ? sym : Eigen::Matrix3d(sym + 0.5 * H.transpose() * H);
+        const Eigen::Matrix3d exact = kin == material::Kinematics::SmallStrain
+                                          ? sym
+                                          : Eigen::Matrix3d(sym + 0.5 * H.transpose() * H);
         EXPECT_NEAR(e(0), exact(0, 0), 1e-15 * std::abs(exact(0, 0)));
         EXPECT_NEAR(e(1), exact(1, 1), 1e-15 * std::abs(exact(1, 1)));
         EXPECT_NEAR(e(2), exact(2, 2), 1e-15 * std::abs(exact(2, 2)));

@@ -265,9 +265,11 @@ void CoupledDriver::Impl::setUp(int restartLevel)
         try
         {
             const auto& fi = fluid->interface();
-            // one source (the wetted nodes) for both: its set-up is shared where it can be
-            auto maps =
-                mapping::buildMappings(params.mapping, solidNodes, {&fi.points, &fi.faceCentres});
+            // one source (the wetted nodes, with their faces for nearest-projection) for both:
+            // its set-up is shared where it can be
+            const mapping::SourceSurface surface{solid.wettedFaces()};
+            auto maps = mapping::buildMappings(params.mapping, solidNodes,
+                                               {&fi.points, &fi.faceCentres}, &surface);
             displacementMap = std::move(maps[0]);
             forceMap = std::move(maps[1]);
             log.open(restartLevel);

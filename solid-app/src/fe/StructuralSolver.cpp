@@ -1215,6 +1215,29 @@ std::vector<double> StructuralSolver::wettedNodeCoordinates() const
     return x;
 }
 
+mesh::CellList StructuralSolver::wettedFaces() const
+{
+    mesh::CellList local;
+    if (problem_.wetted.empty())
+        return local;
+    const mesh::CellList& faces = mesh_.surface(problem_.wetted).faces;
+    std::vector<int> nodes;
+    for (int f = 0; f < faces.size(); ++f)
+    {
+        nodes.clear();
+        for (int a = 0; a < faces.numNodes(f); ++a)
+        {
+            // wettedNodes_ is sorted and holds every node of these faces
+            const auto it =
+                std::lower_bound(wettedNodes_.begin(), wettedNodes_.end(), faces.nodes(f)[a]);
+            nodes.push_back(static_cast<int>(it - wettedNodes_.begin()));
+        }
+        local.add(faces.types[static_cast<std::size_t>(f)], nodes.data(),
+                  static_cast<int>(nodes.size()));
+    }
+    return local;
+}
+
 std::vector<double> StructuralSolver::wettedNodeDisplacements() const
 {
     std::vector<double> d;

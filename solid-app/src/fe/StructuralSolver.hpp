@@ -185,6 +185,9 @@ public:
     std::vector<double> wettedNodeCoordinates() const;             // 3 per node [m]
     std::vector<double> wettedNodeDisplacements() const;           // 3 per node [m]
     const std::vector<int>& wettedNodes() const { return wettedNodes_; }
+    // The wetted surface's faces with node indices into wettedNodes() (the order of
+    // wettedNodeCoordinates()); empty without a wetted surface.
+    mesh::CellList wettedFaces() const;
     // --- Results of the CURRENT state: the last converged solve, or, after acceptLevel() /
     // rejectLevel() / restoreCommittedState(), the last accepted level. An accepted level's
     // stress is that of its own solve (its history increment included): evaluating it after the

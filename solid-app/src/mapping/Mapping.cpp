@@ -30,14 +30,15 @@ std::unique_ptr<Mapping> makeMapping(const MappingParameters& params)
 }
 
 std::unique_ptr<Mapping> buildMapping(const MappingParameters& params, const PointCloud& source,
-                                      const PointCloud& target)
+                                      const PointCloud& target, const SourceSurface* surface)
 {
-    return std::move(buildMappings(params, source, {&target}).front());
+    return std::move(buildMappings(params, source, {&target}, surface).front());
 }
 
 std::vector<std::unique_ptr<Mapping>> buildMappings(const MappingParameters& params,
                                                     const PointCloud& source,
-                                                    const std::vector<const PointCloud*>& targets)
+                                                    const std::vector<const PointCloud*>& targets,
+                                                    const SourceSurface* surface)
 {
     params.validate();
     std::vector<std::unique_ptr<Mapping>> mappings;
@@ -49,6 +50,13 @@ std::vector<std::unique_ptr<Mapping>> buildMappings(const MappingParameters& par
         if (!mapping)
         {
             mapping = makeMapping(params);
+            if (mapping->needsSourceSurface() && !surface)
+                throw std::runtime_error("mapping " + params.type() +
+                                         " needs the source's surface faces (the solid's wetted "
+                                         "faces), which this caller does not give; use another "
+                                         "mapping.type");
+            if (surface)
+                mapping->setSourceSurface(*surface);
             mapping->compute(source, *target);
         }
         mappings.push_back(std::move(mapping));

@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
 // Interface mapping between non-matching point clouds (solid wetted nodes <-> fluid patch
-// points / face centres). This layer knows point clouds and value arrays only: no MPI, no FE,
-// no YAML. The config layer fills MappingParameters; buildMapping() returns a ready operator.
+// points / face centres). This layer knows point clouds, value arrays and, for the strategies
+// that project onto it, the source's surface faces (mesh::CellList, reference elements): no MPI,
+// no FE assembly, no YAML. The config layer fills MappingParameters; buildMapping() returns a ready
+// operator.
 //
 // A mapping is the linear operator H (N_t x N_s) from source-point values to target-point values:
 //   consistent   (displacements): targetValues = H sourceValues        (per component)
@@ -13,6 +15,7 @@
 #pragma once
 
 #include "config/Strategy.hpp"
+#include "mesh/Mesh.hpp"
 
 #include <Eigen/Core>
 
@@ -28,6 +31,14 @@ using PointCloud = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 // One row per point, one column per component (3 for displacement or force); any unit.
 using Values = Eigen::MatrixXd;
 
+// The source points' surface: its faces (Tri3, Tri6, Quad4, Quad8, Quad9 in Gmsh node order),
+// node indices into the source cloud. nearest-projection maps through it; the point-cloud
+// strategies ignore it.
+struct SourceSurface
+{
+    mesh::CellList faces;
+};
+
 // Base of all mapping strategies (after preCICE mapping::Mapping). Not thread-safe: apply*()
 // use internal workspace, so one object serves one thread.
 class Mapping
@@ -39,6 +50,11 @@ public:
     // Keyword of the strategy ("nearest-neighbour", "rbf-thin-plate", "rbf-wendland-c2",
     // "rbf-pu").
     virtual std::string name() const = 0;
+
+    // Whether compute() needs setSourceSurface() first (nearest-projection).
+    virtual bool needsSourceSurface() const { return false; }
+    // The source's surface faces, before compute(); ignored by the point-cloud strategies.
+    virtual void setSourceSurface(const SourceSurface& /*surface*/) {}
 
     // Set-up (search trees, factorisations); the expensive part, done once per pair of meshes.
     // Pre: source and target non-empty; coordinates in metres. Throws std::runtime_error on
@@ -98,13 +114,17 @@ struct MappingParameters
 std::unique_ptr<Mapping> makeMapping(const MappingParameters& params);
 
 // validate + checkOverlap(source, target, params.overlapTolerance) + makeMapping + compute.
+// surface: the source's faces; required by the strategies that need it (else a one-line
+// std::runtime_error), ignored by the others.
 std::unique_ptr<Mapping> buildMapping(const MappingParameters& params, const PointCloud& source,
-                                      const PointCloud& target);
+                                      const PointCloud& target,
+                                      const SourceSurface* surface = nullptr);
 // buildMapping() from one source to each of `targets` (e.g. the fluid's points and its face
 // centres; non-null, at least one), the source-side set-up done once where the strategy shares
 // it (withSameSource()). Each target's overlap is checked.
 std::vector<std::unique_ptr<Mapping>> buildMappings(const MappingParameters& params,
                                                     const PointCloud& source,
-                                                    const std::vector<const PointCloud*>& targets);
+                                                    const std::vector<const PointCloud*>& targets,
+                                                    const SourceSurface* surface = nullptr);
 
 } // namespace fsi::mapping

@@ -2,6 +2,7 @@
 #include "mapping/Registry.hpp"
 
 #include "mapping/NearestNeighbour.hpp"
+#include "mapping/NearestProjection.hpp"
 #include "mapping/RbfPartitionOfUnity.hpp"
 #include "mapping/RbfThinPlate.hpp"
 #include "mapping/RbfWendlandC2.hpp"
@@ -16,6 +17,7 @@ const std::vector<MappingType>& mappingTypes()
         config::strategyType<ThinPlateParameters, Mapping>(),
         config::strategyType<WendlandParameters, Mapping>(),
         config::strategyType<PartitionOfUnityParameters, Mapping>(),
+        config::strategyType<NearestProjectionParameters, Mapping>(),
     };
     return types;
 }

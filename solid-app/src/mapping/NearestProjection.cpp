@@ -1,0 +1,203 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "mapping/NearestProjection.hpp"
+
+#include "config/YamlReader.hpp"
+#include "mapping/KdTree.hpp"
+#include "mesh/ReferenceElement.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+namespace fsi::mapping
+{
+
+const std::vector<std::string>& NearestProjectionParameters::keys()
+{
+    static const std::vector<std::string> k{"candidate_faces"};
+    return k;
+}
+
+NearestProjectionParameters NearestProjectionParameters::parse(const config::Block& layer)
+{
+    NearestProjectionParameters p;
+    if (const auto b = layer.optionalBlock(keyword))
+    {
+        b->allowOnly(keys());
+        p.candidateFaces = b->integer("candidate_faces", p.candidateFaces);
+    }
+    return p;
+}
+
+void NearestProjectionParameters::validate() const
+{
+    if (candidateFaces < 1 || candidateFaces > 200)
+        throw std::runtime_error("nearest-projection.candidate_faces must be in [1, 200] (got " +
+                                 std::to_string(candidateFaces) + "); e.g. 24");
+}
+
+std::string NearestProjectionParameters::echo() const
+{
+    return "{candidate_faces: " + std::to_string(candidateFaces) + "}";
+}
+
+namespace
+{
+
+using Vec3 = Eigen::Vector3d;
+
+bool isSurfaceType(mesh::CellType t)
+{
+    using mesh::CellType;
+    return t == CellType::Tri3 || t == CellType::Tri6 || t == CellType::Quad4 ||
+           t == CellType::Quad8 || t == CellType::Quad9;
+}
+
+// The reference face's domain: triangle xi, eta >= 0, xi + eta <= 1; quad [-1, 1]^2.
+Vec3 clampToFace(Vec3 xi, bool simplex)
+{
+    xi(2) = 0.0;
+    if (!simplex)
+    {
+        xi(0) = std::clamp(xi(0), -1.0, 1.0);
+        xi(1) = std::clamp(xi(1), -1.0, 1.0);
+        return xi;
+    }
+    xi(0) = std::max(xi(0), 0.0);
+    xi(1) = std::max(xi(1), 0.0);
+    const double sum = xi(0) + xi(1);
+    if (sum > 1.0)
+    {
+        xi(0) /= sum;
+        xi(1) /= sum;
+    }
+    return xi;
+}
+
+// The closest point of one (possibly curved) face to x: Gauss-Newton on |X(xi) - x|^2 from
+// the face's centre, each step clamped to the face. Returns xi; N the shape functions there and
+// *distance |X(xi) - x|.
+Vec3 projectOntoFace(const mesh::ReferenceElement& ref, const Eigen::Matrix3Xd& nodes,
+                     const Vec3& x, Eigen::VectorXd& N, Eigen::MatrixXd& dN, double* distance)
+{
+    Vec3 xi = ref.isSimplex() ? Vec3(1.0 / 3.0, 1.0 / 3.0, 0.0) : Vec3::Zero();
+    for (int iteration = 0; iteration < 12; ++iteration)
+    {
+        ref.evaluate(xi, N, dN);
+        const Vec3 r = nodes * N - x;
+        const Eigen::Matrix<double, 3, 2> J = nodes * dN.leftCols<2>();
+        const Eigen::Matrix2d JtJ = J.transpose() * J;
+        const Eigen::Vector2d step = JtJ.ldlt().solve(-J.transpose() * r);
+        const Vec3 next = clampToFace(xi + Vec3(step(0), step(1), 0.0), ref.isSimplex());
+        const double moved = (next - xi).norm();
+        xi = next;
+        if (moved < 1e-12)
+            break;
+    }
+    ref.evaluate(xi, N, dN);
+    *distance = (nodes * N - x).norm();
+    return xi;
+}
+
+} // namespace
+
+NearestProjection::NearestProjection(const NearestProjectionParameters& params) : params_(params)
+{
+    params_.validate();
+}
+
+void NearestProjection::setSourceSurface(const SourceSurface& surface)
+{
+    surface_ = surface;
+    haveSurface_ = true;
+}
+
+void NearestProjection::compute(const PointCloud& source, const PointCloud& target)
+{
+    if (!haveSurface_ || surface_.faces.size() == 0)
+        throw std::runtime_error("mapping nearest-projection: no source surface faces (the "
+                                 "solid's wetted faces); use another mapping.type");
+    const mesh::CellList& faces = surface_.faces;
+    const int nFaces = faces.size();
+    PointCloud centroids(nFaces, 3);
+    for (int f = 0; f < nFaces; ++f)
+    {
+        if (!isSurfaceType(faces.types[static_cast<size_t>(f)]))
+            throw std::runtime_error(
+                "mapping nearest-projection: source face " + std::to_string(f) + " is a " +
+                mesh::ReferenceElement::get(faces.types[static_cast<size_t>(f)]).name() +
+                ", not a Tri3/Tri6/Quad4/Quad8/Quad9 surface face");
+        Vec3 c = Vec3::Zero();
+        for (int a = 0; a < faces.numNodes(f); ++a)
+        {
+            const int node = faces.nodes(f)[a];
+            if (node < 0 || node >= source.rows())
+                throw std::runtime_error("mapping nearest-projection: source face " +
+                                         std::to_string(f) + " names point " +
+                                         std::to_string(node) + " of a cloud of " +
+                                         std::to_string(source.rows()));
+            c += source.row(node).transpose();
+        }
+        centroids.row(f) = (c / faces.numNodes(f)).transpose();
+    }
+    const KdTree tree(centroids);
+    const int k = std::min(params_.candidateFaces, nFaces);
+
+    std::vector<Eigen::Triplet<double>> triplets;
+    triplets.reserve(static_cast<size_t>(target.rows()) * 9);
+    std::vector<Eigen::Index> candidates;
+    std::vector<double> centroidDistances;
+    Eigen::VectorXd N, bestN;
+    Eigen::MatrixXd dN;
+    Eigen::Matrix3Xd nodes;
+    double sumSquares = 0.0;
+    maxDistance_ = 0.0;
+    for (Eigen::Index t = 0; t < target.rows(); ++t)
+    {
+        const Vec3 x = target.row(t).transpose();
+        tree.nearest(x.data(), k, candidates, centroidDistances);
+        double best = std::numeric_limits<double>::infinity();
+        int bestFace = -1;
+        for (const Eigen::Index f : candidates)
+        {
+            const int face = static_cast<int>(f);
+            const auto& ref = mesh::ReferenceElement::get(faces.types[static_cast<size_t>(face)]);
+            nodes.resize(3, faces.numNodes(face));
+            for (int a = 0; a < faces.numNodes(face); ++a)
+                nodes.col(a) = source.row(faces.nodes(face)[a]).transpose();
+            double distance = 0.0;
+            projectOntoFace(ref, nodes, x, N, dN, &distance);
+            if (distance < best)
+            {
+                best = distance;
+                bestFace = face;
+                bestN = N;
+            }
+        }
+        for (int a = 0; a < faces.numNodes(bestFace); ++a)
+            triplets.emplace_back(t, faces.nodes(bestFace)[a], bestN(a));
+        maxDistance_ = std::max(maxDistance_, best);
+        sumSquares += best * best;
+    }
+    rmsDistance_ = target.rows() > 0 ? std::sqrt(sumSquares / double(target.rows())) : 0.0;
+    weights_.resize(target.rows(), source.rows());
+    weights_.setFromTriplets(triplets.begin(), triplets.end()); // duplicates summed
+    sourceSize_ = source.rows();
+    targetSize_ = target.rows();
+}
+
+void NearestProjection::applyConsistent(const Eigen::Ref<const Values>& sourceValues,
+                                        Eigen::Ref<Values> targetValues) const
+{
+    targetValues.noalias() = weights_ * sourceValues;
+}
+
+void NearestProjection::applyConservative(const Eigen::Ref<const Values>& targetValues,
+                                          Eigen::Ref<Values> sourceValues) const
+{
+    sourceValues.noalias() = weights_.transpose() * targetValues;
+}
+
+} // namespace fsi::mapping

@@ -1,0 +1,74 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+//
+// nearest-projection: each target point takes the value that the source surface's own shape
+// functions give at the point's closest point on that surface. The source surface is the solid's
+// wetted faces (Tri3/Tri6/Quad4/Quad8/Quad9, node indices into the source cloud), given with
+// setSourceSurface() before compute(). Row t of H holds N_a(xi_t) for the nodes a of the face
+// closest to target point t, xi_t its local coordinates there (Gauss-Newton on |X(xi) - x_t|^2,
+// kept inside the face). So:
+//   - consistent: the displaced fluid surface follows the solid's finite-element surface; every
+//     field of the faces' interpolation space (constants, linear fields, on straight-sided
+//     quadratic faces quadratic ones) is reproduced exactly at points on the surface; a point at
+//     distance d off it takes the value at its projection;
+//   - conservative (H^T): each face force goes to the nodes of its face with the shape-function
+//     weights of its projection (the consistent nodal load); total force exactly; total moment
+//     up to sum (x_t - X(xi_t)) x f_t, i.e. exactly for forces along the surface normal.
+// No radius and no linear solve: set-up is a search per target point, an apply a sparse product.
+#pragma once
+
+#include "mapping/Mapping.hpp"
+
+#include <Eigen/SparseCore>
+
+#include <vector>
+
+namespace fsi::mapping
+{
+
+class NearestProjection;
+
+struct NearestProjectionParameters
+{
+    static constexpr const char* keyword = "nearest-projection";
+    using Strategy = NearestProjection;
+    // Faces examined per target point: those whose centroids are the nearest this many; the
+    // closest point is searched on each. In [1, 200].
+    int candidateFaces = 24;
+
+    static const std::vector<std::string>& keys();
+    static NearestProjectionParameters parse(const config::Block& layer);
+    // Throws std::runtime_error naming mapping.nearest-projection.<key> and the fix.
+    void validate() const;
+    std::string echo() const;
+};
+
+class NearestProjection final : public Mapping
+{
+public:
+    explicit NearestProjection(const NearestProjectionParameters& params = {});
+    std::string name() const override { return "nearest-projection"; }
+    bool needsSourceSurface() const override { return true; }
+    void setSourceSurface(const SourceSurface& surface) override;
+    // Pre: setSourceSurface() done, its node indices < source.rows(). Throws std::runtime_error
+    // (one line) for a missing surface or a face type without a surface reference element.
+    void compute(const PointCloud& source, const PointCloud& target) override;
+    void applyConsistent(const Eigen::Ref<const Values>& sourceValues,
+                         Eigen::Ref<Values> targetValues) const override;
+    void applyConservative(const Eigen::Ref<const Values>& targetValues,
+                           Eigen::Ref<Values> sourceValues) const override;
+
+    // Largest and root-mean-square distance [m] from a target point to its projection (how far
+    // the two discretised surfaces lie apart).
+    double maxDistance() const { return maxDistance_; }
+    double rmsDistance() const { return rmsDistance_; }
+
+private:
+    NearestProjectionParameters params_;
+    SourceSurface surface_;
+    bool haveSurface_ = false;
+    Eigen::SparseMatrix<double, Eigen::RowMajor> weights_; // H: targets x sources
+    double maxDistance_ = 0.0;
+    double rmsDistance_ = 0.0;
+};
+
+} // namespace fsi::mapping
