@@ -17,7 +17,9 @@
 // CG + incomplete Cholesky above, since the bench runs without MPI; --wendland-solver mumps: MUMPS
 // LDL^T as solid-app uses it, each case then initialises MPI as a singleton in its child
 // process, before the resident-set baseline; skipped above 1e5), rbf-thin-plate (dense; skipped
-// above 4e3). Wendland lines end with solver=S, the solver in use.
+// above 4e3), nearest-projection (onto the solid grid's Quad4 faces, bilinear; its lin_err is
+// the fluid centroids' distance to the flat faces, not round-off). Wendland lines end with
+// solver=S, the solver in use.
 //
 // One line per kind and size:
 //   mapping-bench: kind=K n=N setup_s=X apply_s=X rss_mb=X max_rel_err=X <more fields>
@@ -89,6 +91,22 @@ PointCloud solidFoil(int nAround)
             p.row(Eigen::Index(j) * nAround + i) << xy(0), xy(1), double(j) / (nSpan - 1);
         }
     return p;
+}
+
+// The solid grid's Quad4 faces (closed around the section): nearest-projection's source surface.
+SourceSurface solidFaces(int nAround)
+{
+    const int nSpan = nAround / 2 + 1;
+    SourceSurface surface;
+    for (int j = 0; j + 1 < nSpan; ++j)
+        for (int i = 0; i < nAround; ++i)
+        {
+            const int next = (i + 1) % nAround;
+            const int quad[4] = {j * nAround + i, j * nAround + next, (j + 1) * nAround + next,
+                                 (j + 1) * nAround + i};
+            surface.faces.add(fsi::mesh::CellType::Quad4, quad, 4);
+        }
+    return surface;
 }
 
 // Fluid: centroids of the mAround x mSpan quads of a grid shifted by 0.37 of a step.
@@ -202,7 +220,8 @@ void runCase(const std::string& kind, long size, double wendlandRadius,
     const double rss0 = statusMiB("VmRSS");
     const bool peakReset = resetPeak();
     const double cpu0 = cpuSeconds(), wall0 = wallSeconds();
-    const auto mapping = buildMapping(params, s, t);
+    const SourceSurface faces = solidFaces(nAround);
+    const auto mapping = buildMapping(params, s, t, &faces);
     const double setupCpu = cpuSeconds() - cpu0, setupWall = wallSeconds() - wall0;
     const Timing consistent = timePerCall([&] { mapping->applyConsistent(smooth, mapped); });
     const double error = relativeError(mapped, smoothExact);
@@ -238,7 +257,7 @@ try
     double wendlandRadius = 0.0;
     std::string wendlandSolver = "auto";
     std::vector<std::string> kinds{"nearest-neighbour", "rbf-pu", "rbf-wendland-c2",
-                                   "rbf-thin-plate"};
+                                   "rbf-thin-plate", "nearest-projection"};
     for (int a = 1; a < argc; ++a)
     {
         const std::string arg = argv[a];
