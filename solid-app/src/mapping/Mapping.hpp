@@ -11,7 +11,8 @@
 //   conservative (forces):        sourceValues = H^T targetValues      (per component)
 // For forces, build the mapping with source = solid wetted nodes and target = fluid face centres
 // and call applyConservative: total force is conserved exactly (H reproduces constants), total
-// moment too when H reproduces linear fields (all RBF kinds; not nearest-neighbour).
+// moment too when H reproduces linear fields (all RBF kinds; not nearest-neighbour; for
+// nearest-projection up to the forces' lever arm off the source surface).
 #pragma once
 
 #include "config/Strategy.hpp"
@@ -48,7 +49,7 @@ public:
     virtual ~Mapping() = default;
 
     // Keyword of the strategy ("nearest-neighbour", "rbf-thin-plate", "rbf-wendland-c2",
-    // "rbf-pu").
+    // "rbf-pu", "nearest-projection").
     virtual std::string name() const = 0;
 
     // Whether compute() needs setSourceSurface() first (nearest-projection).

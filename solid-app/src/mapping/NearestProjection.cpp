@@ -90,6 +90,8 @@ Vec3 projectOntoFace(const mesh::ReferenceElement& ref, const Eigen::Matrix3Xd& 
         const Eigen::Matrix<double, 3, 2> J = nodes * dN.leftCols<2>();
         const Eigen::Matrix2d JtJ = J.transpose() * J;
         const Eigen::Vector2d step = JtJ.ldlt().solve(-J.transpose() * r);
+        if (!step.allFinite())
+            break; // a degenerate (zero-area) face: keep the last point
         const Vec3 next = clampToFace(xi + Vec3(step(0), step(1), 0.0), ref.isSimplex());
         const double moved = (next - xi).norm();
         xi = next;
@@ -176,6 +178,11 @@ void NearestProjection::compute(const PointCloud& source, const PointCloud& targ
                 bestN = N;
             }
         }
+        if (bestFace < 0)
+            throw std::runtime_error("mapping nearest-projection: target point " +
+                                     std::to_string(t) +
+                                     " has no finite distance to any candidate face (degenerate "
+                                     "wetted faces?)");
         for (int a = 0; a < faces.numNodes(bestFace); ++a)
             triplets.emplace_back(t, faces.nodes(bestFace)[a], bestN(a));
         maxDistance_ = std::max(maxDistance_, best);
