@@ -6,7 +6,8 @@
 #
 # usage: ./run.sh [--preset coarse|medium|fine] [--launch mpmd|port] [--material M]
 #                 [--accelerator aitken|constant|iqn-ils] [--relaxation W] [--tolerance EPS]
-#                 [--np-fluid N] [--timeout S] [--times T0,T1,...] [--mesh-only] [--restart]
+#                 [--np-fluid N] [--timeout S] [--times T0,T1,...] [--mapping TYPE] [--mesh-only]
+#                 [--restart]
 #   --preset       mesh resolution of both sides (default coarse), see README.md
 #   --launch       mpmd (default): mpirun -np N fluid-app -case fluid : -np 1 solid-app run.yaml
 #                  port: two mpiruns through scripts/launch-port (needs FSI_ROOT or launch-port on PATH)
@@ -16,6 +17,9 @@
 #   --accelerator  override coupling.acceleration.type; --relaxation sets its (initial) omega
 #                  (defaults: aitken 0.5, iqn-ils 0.5, constant 0.5)
 #   --tolerance    coupling.convergence.absolute_tolerance [m] (default: the config's, 1e-8)
+#   --mapping      override coupling.mapping.type (default: the config's rbf-thin-plate):
+#                  nearest-neighbour | rbf-thin-plate | rbf-pu | nearest-projection (onto the
+#                  beam's Quad8 faces); each with its defaults
 #   --beam NX,NY   override the preset's beam cells along / across the beam (NY even)
 #   --np-fluid     fluid ranks (default 1; > 1 decomposes the fluid mesh, hierarchical)
 #   --timeout      comm timeout of both programs [s] (default by preset: coarse 600, medium 1800,
@@ -33,7 +37,7 @@ here=$(pwd)
 usage() { sed -n '6,34p' "$0" | sed 's/^# \{0,1\}//'; exit "${1:-0}"; }
 
 preset=coarse launch=mpmd material=elastic accelerator="" relaxation="" tolerance="" npf=1
-timeout='' mesh_only=0 beam= times='' restart=0
+timeout='' mesh_only=0 beam= times='' restart=0 mapping=''
 while [ $# -gt 0 ]; do
   case "$1" in
     --preset) preset=$2; shift 2 ;;
@@ -47,6 +51,7 @@ while [ $# -gt 0 ]; do
     --timeout) timeout=$2; shift 2 ;;
     --mesh-only) mesh_only=1; shift ;;
     --times) times=$2; shift 2 ;;
+    --mapping) mapping=$2; shift 2 ;;
     --restart) restart=1; shift ;;
     -h|--help) usage 0 ;;
     *) echo "error: run.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
@@ -69,6 +74,8 @@ case "$material" in
   instantaneous) config=solid-instantaneous.yaml ;;
   *) echo "error: run.sh: --material must be elastic, viscoelastic or instantaneous" >&2; exit 2 ;;
 esac
+case "$mapping" in ""|nearest-neighbour|rbf-thin-plate|rbf-pu|nearest-projection) ;;
+  *) echo "error: run.sh: --mapping must be nearest-neighbour, rbf-thin-plate, rbf-pu or nearest-projection" >&2; exit 2 ;; esac
 case "$accelerator" in ""|aitken|constant|iqn-ils) ;; *) echo "error: run.sh: --accelerator must be aitken, constant or iqn-ils" >&2; exit 2 ;; esac
 # The channel generator is CFD1's (two wall patches: cylinder rigid, beam the interface).
 generator=${FSI_ROOT:?run through ./scripts/run cases/turek-hron-fsi1 (FSI_ROOT unset)}/cases/turek-hron-cfd1/blockMesh.py
@@ -132,6 +139,11 @@ if [ -n "$accelerator" ] || [ -n "$relaxation" ]; then
 fi
 if [ -n "$tolerance" ]; then
   sed -i "s/^\(    absolute_tolerance:\) [^ ]*/\1 $tolerance/" run.yaml
+fi
+if [ -n "$mapping" ]; then
+  grep -q "^  mapping: {type: " run.yaml ||
+    { echo "error: run.sh: --mapping needs a 'mapping: {type: ...}' line in $config" >&2; exit 2; }
+  sed -i "s/^  mapping: {type: .*/  mapping: {type: $mapping}/" run.yaml
 fi
 if [ -n "$times" ]; then
   grep -q "^  time: {type: list" run.yaml ||

@@ -3,11 +3,13 @@
 """Turek-Hron FSI1 coupled verification tests (real fluid-app + solid-app).
 
 usage: test_fsi1.py elastic WORKDIR --launch mpmd|port --tol ux=A,uy=B,drag=C,lift=D
+                     [--mapping TYPE]
        test_fsi1.py viscoelastic WORKDIR --launch mpmd|port --tol-match T
 
 elastic:      runs cases/turek-hron-fsi1/run.sh --preset coarse in a copy of the case and
               asserts |rel_error| <= tol for ux(A), uy(A), drag, lift against the FSI1
-              reference (results/benchmark.csv).
+              reference (results/benchmark.csv); --mapping replaces the case's mapping type
+              (run.sh --mapping), e.g. nearest-projection.
 viscoelastic: runs --material viscoelastic (levels t = 0, 1e6 s), --material instantaneous
               and --material elastic (coarse) and asserts that the t = 1e6 s level matches the
               elastic FSI1 run and the t = 0 level the instantaneous-modulus elastic run, each
@@ -72,7 +74,9 @@ def main():
     failures = []
     if mode == "elastic":
         tol = parse_tol(args[args.index("--tol") + 1])
-        levels = run_case(workdir, "coarse-" + launch, launch)
+        mapping = args[args.index("--mapping") + 1] if "--mapping" in args else ""
+        levels = run_case(workdir, "coarse-" + launch + ("-" + mapping if mapping else ""), launch,
+                          *(["--mapping", mapping] if mapping else []))
         for q in QUANTITIES:
             value, err = levels[0][q]
             ok = abs(err) <= tol[q]
