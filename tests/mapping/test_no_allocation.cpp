@@ -12,6 +12,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 using namespace fsi::mapping;
 using fsi::mapping::test::corner;
 using fsi::mapping::test::fluidCylinder;
@@ -65,4 +67,42 @@ TEST(MappingApply, PartitionOfUnityCorrectionAllocatesNothingAfterTheFirstCall)
     Eigen::internal::set_is_malloc_allowed(true);
     EXPECT_NEAR(v(0, 0), 1.0, 1e-12);
     EXPECT_NEAR(f.col(0).sum(), double(t.rows()), 1e-9);
+}
+
+TEST(MappingApply, NearestProjectionAllocatesNothingAfterTheFirstCall)
+{
+    // a flat 6 x 6 node patch of Tri3 faces; targets slightly off it
+    const int m = 6;
+    PointCloud s(m * m, 3);
+    SourceSurface surface;
+    for (int j = 0; j < m; ++j)
+        for (int i = 0; i < m; ++i)
+            s.row(j * m + i) << 0.2 * i, 0.2 * j, 0.0;
+    for (int j = 0; j + 1 < m; ++j)
+        for (int i = 0; i + 1 < m; ++i)
+        {
+            const int a[3] = {j * m + i, j * m + i + 1, (j + 1) * m + i + 1};
+            const int b[3] = {j * m + i, (j + 1) * m + i + 1, (j + 1) * m + i};
+            surface.faces.add(fsi::mesh::CellType::Tri3, a, 3);
+            surface.faces.add(fsi::mesh::CellType::Tri3, b, 3);
+        }
+    PointCloud t(40, 3);
+    for (int k = 0; k < 40; ++k)
+        t.row(k) << 0.025 * k, 0.5 + 0.3 * std::sin(0.7 * k), 0.001 * std::cos(1.3 * k);
+    MappingParameters p;
+    p.strategy = mappingType("nearest-projection").defaults();
+    const auto mapping = buildMapping(p, s, t, &surface);
+    const Values u = Values::Ones(s.rows(), 3), g = Values::Ones(t.rows(), 3);
+    Values v(t.rows(), 3), f(s.rows(), 3);
+    mapping->applyConsistent(u, v);
+    mapping->applyConservative(g, f);
+    Eigen::internal::set_is_malloc_allowed(false);
+    for (int i = 0; i < 3; ++i)
+    {
+        mapping->applyConsistent(u, v);
+        mapping->applyConservative(g, f);
+    }
+    Eigen::internal::set_is_malloc_allowed(true);
+    EXPECT_NEAR(v(0, 0), 1.0, 1e-12);     // constants are reproduced
+    EXPECT_NEAR(f.sum(), g.sum(), 1e-10); // and the total conserved
 }
