@@ -2,6 +2,8 @@
 // nearest-projection: exact reproduction of the faces' interpolation space at points on the
 // (curved) source surface, the value at the projection for points off it, conservation of force
 // and moment by the transpose, and its one-line errors.
+#include "Clouds.hpp"
+
 #include "mapping/Mapping.hpp"
 #include "mapping/NearestProjection.hpp"
 #include "mapping/Registry.hpp"
@@ -15,6 +17,8 @@
 #include <stdexcept>
 
 using namespace fsi::mapping;
+using fsi::mapping::test::linearField;
+using fsi::mapping::test::totalMoment;
 using fsi::mesh::CellList;
 using fsi::mesh::CellType;
 using fsi::mesh::ReferenceElement;
@@ -98,17 +102,6 @@ PointCloud pointsOnFaces(const PatchMesh& mesh, int count, unsigned seed)
     return points;
 }
 
-Values linearField(const PointCloud& x)
-{
-    Values v(x.rows(), 3);
-    for (Eigen::Index i = 0; i < x.rows(); ++i)
-    {
-        const double a = x(i, 0), b = x(i, 1), c = x(i, 2);
-        v.row(i) << 0.3 + 2.0 * a - b + 0.5 * c, -1.0 + a + 3.0 * c, 0.7 * b - 2.0 * c;
-    }
-    return v;
-}
-
 MappingParameters projection()
 {
     MappingParameters p;
@@ -157,12 +150,8 @@ TEST_P(NearestProjectionFaces, ConservesForceAndMomentOfForcesOnTheSurface)
     map->applyConservative(forces, nodal);
     const Eigen::Vector3d total = forces.colwise().sum().transpose();
     EXPECT_LT((nodal.colwise().sum().transpose() - total).norm(), 1e-11 * forces.norm());
-    Eigen::Vector3d momentTargets = Eigen::Vector3d::Zero(), momentNodes = Eigen::Vector3d::Zero();
-    for (Eigen::Index t = 0; t < targets.rows(); ++t)
-        momentTargets += Eigen::Vector3d(targets.row(t)).cross(Eigen::Vector3d(forces.row(t)));
-    for (Eigen::Index s = 0; s < mesh.nodes.rows(); ++s)
-        momentNodes += Eigen::Vector3d(mesh.nodes.row(s)).cross(Eigen::Vector3d(nodal.row(s)));
-    EXPECT_LT((momentNodes - momentTargets).norm(), 1e-11 * forces.norm());
+    EXPECT_LT((totalMoment(mesh.nodes, nodal) - totalMoment(targets, forces)).norm(),
+              1e-11 * forces.norm());
 }
 
 INSTANTIATE_TEST_SUITE_P(Faces, NearestProjectionFaces,

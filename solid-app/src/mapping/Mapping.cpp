@@ -50,11 +50,6 @@ std::vector<std::unique_ptr<Mapping>> buildMappings(const MappingParameters& par
         if (!mapping)
         {
             mapping = makeMapping(params);
-            if (mapping->needsSourceSurface() && !surface)
-                throw std::runtime_error("mapping " + params.type() +
-                                         " needs the source's surface faces (the solid's wetted "
-                                         "faces), which this caller does not give; use another "
-                                         "mapping.type");
             if (surface)
                 mapping->setSourceSurface(*surface);
             mapping->compute(source, *target);

@@ -52,9 +52,8 @@ public:
     // "rbf-pu", "nearest-projection").
     virtual std::string name() const = 0;
 
-    // Whether compute() needs setSourceSurface() first (nearest-projection).
-    virtual bool needsSourceSurface() const { return false; }
-    // The source's surface faces, before compute(); ignored by the point-cloud strategies.
+    // The source's surface faces, before compute(); ignored by the point-cloud strategies
+    // (nearest-projection's compute() refuses to run without them).
     virtual void setSourceSurface(const SourceSurface& /*surface*/) {}
 
     // Set-up (search trees, factorisations); the expensive part, done once per pair of meshes.
@@ -115,8 +114,8 @@ struct MappingParameters
 std::unique_ptr<Mapping> makeMapping(const MappingParameters& params);
 
 // validate + checkOverlap(source, target, params.overlapTolerance) + makeMapping + compute.
-// surface: the source's faces; required by the strategies that need it (else a one-line
-// std::runtime_error), ignored by the others.
+// surface: the source's faces, given to every strategy (setSourceSurface); nearest-projection
+// needs them (compute() throws one line without), the others ignore them.
 std::unique_ptr<Mapping> buildMapping(const MappingParameters& params, const PointCloud& source,
                                       const PointCloud& target,
                                       const SourceSurface* surface = nullptr);

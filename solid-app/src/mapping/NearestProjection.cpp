@@ -113,14 +113,14 @@ NearestProjection::NearestProjection(const NearestProjectionParameters& params) 
 void NearestProjection::setSourceSurface(const SourceSurface& surface)
 {
     surface_ = surface;
-    haveSurface_ = true;
 }
 
 void NearestProjection::compute(const PointCloud& source, const PointCloud& target)
 {
-    if (!haveSurface_ || surface_.faces.size() == 0)
-        throw std::runtime_error("mapping nearest-projection: no source surface faces (the "
-                                 "solid's wetted faces); use another mapping.type");
+    if (surface_.faces.size() == 0)
+        throw std::runtime_error("mapping nearest-projection needs the source's surface faces (the "
+                                 "solid's wetted faces), and none were given; use another "
+                                 "mapping.type");
     const mesh::CellList& faces = surface_.faces;
     const int nFaces = faces.size();
     PointCloud centroids(nFaces, 3);

@@ -47,10 +47,9 @@ class NearestProjection final : public Mapping
 public:
     explicit NearestProjection(const NearestProjectionParameters& params = {});
     std::string name() const override { return "nearest-projection"; }
-    bool needsSourceSurface() const override { return true; }
     void setSourceSurface(const SourceSurface& surface) override;
-    // Pre: setSourceSurface() done, its node indices < source.rows(). Throws std::runtime_error
-    // (one line) for a missing surface or a face type without a surface reference element.
+    // Pre: setSourceSurface() done with faces whose node indices are < source.rows(). Throws
+    // std::runtime_error (one line) for no faces, a stray index or a non-surface face type.
     void compute(const PointCloud& source, const PointCloud& target) override;
     void applyConsistent(const Eigen::Ref<const Values>& sourceValues,
                          Eigen::Ref<Values> targetValues) const override;
@@ -64,8 +63,7 @@ public:
 
 private:
     NearestProjectionParameters params_;
-    SourceSurface surface_;
-    bool haveSurface_ = false;
+    SourceSurface surface_;                                // empty until setSourceSurface()
     Eigen::SparseMatrix<double, Eigen::RowMajor> weights_; // H: targets x sources
     double maxDistance_ = 0.0;
     double rmsDistance_ = 0.0;
