@@ -180,6 +180,23 @@ TEST(CouplingParameters, PartitionOfUnityMappingParsesWithDefaultsAndNamesBadKey
               std::string::npos);
 }
 
+// The forces may take their own mapping strategy (force_mapping); absent, mapping serves both.
+TEST(CouplingParameters, ForceMappingIsOptionalAndValidatedLikeTheMapping)
+{
+    EXPECT_FALSE(parseText(minimal).forceMapping.has_value());
+    const auto both = parseText(minimal + "  force_mapping: {type: nearest-projection}\n");
+    EXPECT_EQ(both.mapping.type(), "nearest-neighbour");
+    ASSERT_TRUE(both.forceMapping.has_value());
+    EXPECT_EQ(both.forceMapping->type(), "nearest-projection");
+    EXPECT_NE(both.echo().find("force_mapping:\n    type: nearest-projection"), std::string::npos)
+        << both.echo();
+    const std::string bad = errorOf(minimal + "  force_mapping: {type: rbf-wendland-c2, "
+                                              "rbf-wendland-c2: {support_radius: -1}}\n");
+    EXPECT_NE(bad.find("force_mapping.rbf-wendland-c2"), std::string::npos) << bad;
+    EXPECT_NE(errorOf(minimal + "  force_mapping: {type: linear}\n").find("force_mapping.type"),
+              std::string::npos);
+}
+
 // Issue 15: a bad RBF coefficient is named under its own block with its value in %g, and the
 // launch timeout is capped (1e10 s overflowed the comm layer's clock).
 TEST(CouplingParameters, StrategyErrorsNameTheirBlockAndKeepSmallValues)

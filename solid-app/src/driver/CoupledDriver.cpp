@@ -266,12 +266,22 @@ void CoupledDriver::Impl::setUp(int restartLevel)
         {
             const auto& fi = fluid->interface();
             // one source (the wetted nodes, with their faces for nearest-projection) for both:
-            // its set-up is shared where it can be
+            // its set-up is shared where it can be, unless the forces have their own strategy
             const mapping::SourceSurface surface{solid.wettedFaces()};
-            auto maps = mapping::buildMappings(params.mapping, solidNodes,
-                                               {&fi.points, &fi.faceCentres}, &surface);
-            displacementMap = std::move(maps[0]);
-            forceMap = std::move(maps[1]);
+            if (params.forceMapping)
+            {
+                displacementMap =
+                    mapping::buildMapping(params.mapping, solidNodes, fi.points, &surface);
+                forceMap = mapping::buildMapping(*params.forceMapping, solidNodes,
+                                                 fi.faceCentres, &surface);
+            }
+            else
+            {
+                auto maps = mapping::buildMappings(params.mapping, solidNodes,
+                                                   {&fi.points, &fi.faceCentres}, &surface);
+                displacementMap = std::move(maps[0]);
+                forceMap = std::move(maps[1]);
+            }
             log.open(restartLevel);
         }
         catch (const std::exception& e)
@@ -292,7 +302,9 @@ void CoupledDriver::Impl::setUp(int restartLevel)
     nodalForceRows.resize(n / 3, 3);
     const auto& fi = fluid->interface();
     std::ostringstream s;
-    s << "[mapping] " << params.mapping.type() << ": " << solidNodes.rows()
+    s << "[mapping] " << params.mapping.type()
+      << (params.forceMapping ? " (forces: " + params.forceMapping->type() + ")" : "") << ": "
+      << solidNodes.rows()
       << " solid wetted nodes, " << fi.points.rows() << " fluid points, " << fi.faceCentres.rows()
       << " fluid faces; set-up " << secondsSince(t0) << " s";
     log.say(s.str());

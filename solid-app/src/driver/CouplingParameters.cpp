@@ -83,8 +83,8 @@ mapping::MappingParameters parseMapping(const config::Block& b)
 CouplingParameters CouplingParameters::parse(const config::Block& b)
 {
     b.allowOnly({"launch", "max_iterations", "on_max_iterations", "divergence_factor", "predictor",
-                 "convergence", "acceleration", "mapping", "time", "section_angle", "checkpoint",
-                 "recovery", "fluid_accuracy", "secant"});
+                 "convergence", "acceleration", "mapping", "force_mapping", "time", "section_angle",
+                 "checkpoint", "recovery", "fluid_accuracy", "secant"});
     CouplingParameters p;
     if (auto l = b.optionalBlock("launch"))
     {
@@ -137,6 +137,8 @@ CouplingParameters CouplingParameters::parse(const config::Block& b)
     validateIn(p.convergence, c, bandFactorValid ? "absolute_tolerance" : "band_factor");
     p.acceleration = parseAcceleration(b.block("acceleration"));
     p.mapping = parseMapping(b.block("mapping"));
+    if (auto f = b.optionalBlock("force_mapping"))
+        p.forceMapping = parseMapping(*f);
     if (auto t = b.optionalBlock("time"))
         p.time = schedule::parseSchedule(*t, ""); // type required
     if (auto s = b.optionalBlock("section_angle"))
@@ -221,10 +223,16 @@ std::string CouplingParameters::echo() const
       << ", band_factor: " << convergence.bandFactor << "}\n"
       << "  acceleration:\n    type: " << acceleration.type() << "\n"
       << "    " << acceleration.type() << ": " << acceleration.echo() << "\n";
-    s << "  mapping:\n    type: " << mapping.type()
-      << "\n    overlap_tolerance: " << mapping.overlapTolerance << "\n";
-    if (!mapping::mappingType(mapping.type()).keys.empty())
-        s << "    " << mapping.type() << ": " << mapping.strategy.echo() << "\n";
+    const auto echoMapping = [&s](const char* key, const mapping::MappingParameters& m)
+    {
+        s << "  " << key << ":\n    type: " << m.type()
+          << "\n    overlap_tolerance: " << m.overlapTolerance << "\n";
+        if (!mapping::mappingType(m.type()).keys.empty())
+            s << "    " << m.type() << ": " << m.strategy.echo() << "\n";
+    };
+    echoMapping("mapping", mapping);
+    if (forceMapping)
+        echoMapping("force_mapping", *forceMapping);
     std::string timeCoefficients = time.echo(); // "{key: value, ...}"
     timeCoefficients = timeCoefficients.substr(1, timeCoefficients.size() - 2);
     s << "  time: {type: " << time.type() << (timeCoefficients.empty() ? "" : ", ")

@@ -4,6 +4,7 @@
 // documented in config/coupled.example.yaml). Each strategy keeps its own coefficients block:
 //   acceleration: { type: aitken, aitken: { initial_relaxation: 0.5 } }
 //   mapping:      { type: rbf-wendland-c2, rbf-wendland-c2: { support_radius: 0.004 } }
+//   force_mapping: { type: nearest-projection }   (optional: forces mapped by another strategy)
 #pragma once
 
 #include "acceleration/Accelerator.hpp"
@@ -70,7 +71,8 @@ struct CouplingParameters
     std::optional<FluidAccuracyParameters> fluidAccuracy; // absent: the fluid's own controls
     acceleration::ConvergenceParameters convergence;
     acceleration::AcceleratorParameters acceleration;
-    mapping::MappingParameters mapping;
+    mapping::MappingParameters mapping;                 // displacements (and forces if no force_mapping)
+    std::optional<mapping::MappingParameters> forceMapping; // forces' own strategy (optional)
     schedule::ScheduleParameters time = schedule::SteadyParameters{}; // no block: one level
     std::optional<SectionAngleParameters> sectionAngle;
     CheckpointParameters checkpoint;
