@@ -38,6 +38,11 @@ public:
         for (mapping::PointCloud* c : {&interface_.points, &interface_.faceCentres})
             c->rowwise() += Eigen::RowVector3d(dx, dy, dz);
     }
+    // Moves the face centres alone (forces then come from other places than the points).
+    void shiftFaceCentres(double dx, double dy, double dz)
+    {
+        interface_.faceCentres.rowwise() += Eigen::RowVector3d(dx, dy, dz);
+    }
     driver::FluidResponse solve(int level, int iteration, double time,
                                 const mapping::Values& pointDisplacement,
                                 const driver::FluidAccuracy& accuracy) override
