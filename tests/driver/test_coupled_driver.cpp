@@ -593,7 +593,8 @@ TEST(CoupledDriver, ForceMappingMapsTheForcesAlone)
     const Eigen::Map<const Eigen::VectorXd> a(u.data(), u.size()), b(uSame.data(), uSame.size()),
         c(uSpline.data(), uSpline.size());
     EXPECT_LE((b - a).lpNorm<Eigen::Infinity>(), 1e-12 * a.lpNorm<Eigen::Infinity>());
-    EXPECT_GT((c - a).lpNorm<Eigen::Infinity>(), 5e-4 * a.lpNorm<Eigen::Infinity>()); // 2.2e-3 measured
+    EXPECT_GT((c - a).lpNorm<Eigen::Infinity>(),
+              5e-4 * a.lpNorm<Eigen::Infinity>()); // 2.2e-3 measured
 }
 
 // Inexact fluid solves (coupling.fluid_accuracy): the double's force is off by the asked force

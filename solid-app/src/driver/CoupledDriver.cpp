@@ -272,8 +272,8 @@ void CoupledDriver::Impl::setUp(int restartLevel)
             {
                 displacementMap =
                     mapping::buildMapping(params.mapping, solidNodes, fi.points, &surface);
-                forceMap = mapping::buildMapping(*params.forceMapping, solidNodes,
-                                                 fi.faceCentres, &surface);
+                forceMap = mapping::buildMapping(*params.forceMapping, solidNodes, fi.faceCentres,
+                                                 &surface);
             }
             else
             {
@@ -304,9 +304,8 @@ void CoupledDriver::Impl::setUp(int restartLevel)
     std::ostringstream s;
     s << "[mapping] " << params.mapping.type()
       << (params.forceMapping ? " (forces: " + params.forceMapping->type() + ")" : "") << ": "
-      << solidNodes.rows()
-      << " solid wetted nodes, " << fi.points.rows() << " fluid points, " << fi.faceCentres.rows()
-      << " fluid faces; set-up " << secondsSince(t0) << " s";
+      << solidNodes.rows() << " solid wetted nodes, " << fi.points.rows() << " fluid points, "
+      << fi.faceCentres.rows() << " fluid faces; set-up " << secondsSince(t0) << " s";
     log.say(s.str());
     log.say("[mapping] points: " +
             mapping::assessQuality(*displacementMap, solidNodes, fi.points).toString());

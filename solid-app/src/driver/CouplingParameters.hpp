@@ -71,7 +71,7 @@ struct CouplingParameters
     std::optional<FluidAccuracyParameters> fluidAccuracy; // absent: the fluid's own controls
     acceleration::ConvergenceParameters convergence;
     acceleration::AcceleratorParameters acceleration;
-    mapping::MappingParameters mapping;                 // displacements (and forces if no force_mapping)
+    mapping::MappingParameters mapping; // displacements (and forces if no force_mapping)
     std::optional<mapping::MappingParameters> forceMapping; // forces' own strategy (optional)
     schedule::ScheduleParameters time = schedule::SteadyParameters{}; // no block: one level
     std::optional<SectionAngleParameters> sectionAngle;
