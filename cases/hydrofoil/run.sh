@@ -67,6 +67,10 @@
 #                                           corrected for the moved faces: no pressure-velocity ringing,
 #                                           slower monotone solves (README, "A medium reference
 #                                           history"; fluid-app/README.md)
+#   --warm-start-max-coefficient C          the largest |c_j| of the secant warm start's flow
+#                                           extrapolation (fsiDict coupled/warmStart/maxCoefficient;
+#                                           default the case's 2; > 0; README, "The warm start's
+#                                           largest coefficient")
 #   --fluid-tolerance F                     the fluid's final and largest force accuracy (the solid
 #                                           configs' coupling.fluid_accuracy final.force_tolerance and
 #                                           max_force_tolerance; default 5e-5)
@@ -94,7 +98,7 @@ set -euo pipefail
 source "$FSI_ROOT/scripts/env.sh"
 
 preset=coarse material=both npf=2 nps=2 launch=mpmd tc=0.12 cli=0.5 end="" timeout=900 meshFrom="" restart=0
-flow=laminar scheme=upwind algorithm="" fluidMesh=snappy initFrom="" band="" maxFluidIt="" fluidTol="" couplingTol="" bandWindow="" bandMean="" bandRef="" oscWindow="" wsFlux=""
+flow=laminar scheme=upwind algorithm="" fluidMesh=snappy initFrom="" band="" maxFluidIt="" fluidTol="" couplingTol="" bandWindow="" bandMean="" bandRef="" oscWindow="" wsFlux="" wsMaxCoef=""
 die() { echo "error: hydrofoil/run.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -119,6 +123,7 @@ while [ $# -gt 0 ]; do
     --oscillation-window) [ $# -ge 2 ] || die "--oscillation-window needs a value"; oscWindow=$2; shift 2 ;;
     --band-window) [ $# -ge 2 ] || die "--band-window needs a value"; bandWindow=$2; shift 2 ;;
     --warm-start-flux) [ $# -ge 2 ] || die "--warm-start-flux needs interpolated or kept"; wsFlux=$2; shift 2 ;;
+    --warm-start-max-coefficient) [ $# -ge 2 ] || die "--warm-start-max-coefficient needs a number"; wsMaxCoef=$2; shift 2 ;;
     --fluid-tolerance) [ $# -ge 2 ] || die "--fluid-tolerance needs a value"; fluidTol=$2; shift 2 ;;
     --coupling-tolerance) [ $# -ge 2 ] || die "--coupling-tolerance needs a value in m"; couplingTol=$2; shift 2 ;;
     --max-fluid-iterations) [ $# -ge 2 ] || die "--max-fluid-iterations needs a value"; maxFluidIt=$2; shift 2 ;;
@@ -142,6 +147,8 @@ positive() { awk -v v="$1" -v u="${2:-}" 'BEGIN{exit !(v ~ /^[0-9.eE+-]+$/ && v 
 [ -z "$oscWindow" ] || { [[ "$oscWindow" =~ ^[1-9][0-9]*$ ]] && [ "$oscWindow" -ge 3 ] && [ "$oscWindow" -le 1000 ]; } ||
     die "--oscillation-window '$oscWindow' must be an integer in 3..1000 (about one period of the force's oscillation)"
 case "$wsFlux" in ""|interpolated|kept) ;; *) die "--warm-start-flux must be interpolated or kept (got '$wsFlux')" ;; esac
+[ -z "$wsMaxCoef" ] || awk -v c="$wsMaxCoef" 'BEGIN{exit !(c ~ /^[0-9.eE+-]+$/ && c + 0 > 0 && c + 0 <= 1e3)}' ||
+  die "--warm-start-max-coefficient must be a number in (0, 1000] (got '$wsMaxCoef'), e.g. 2"
 [ -z "$fluidTol" ] || positive "$fluidTol" 1 ||
     die "--fluid-tolerance '$fluidTol' must be a number in (0, 1), e.g. 3e-3"
 # configsHave OPTION WHAT PATTERN...: every solid config has a line matching each PATTERN (the
@@ -236,7 +243,7 @@ for m in "${runs[@]}"; do
     # the options given, as fsiDict coupled/KEY
     for kv in bandTolerance="$band" maxIterations="$maxFluidIt" bandMeanTolerance="$bandMean" \
               bandReferenceForce="$bandRef" oscillationWindow="$oscWindow" bandWindow="$bandWindow" \
-              warmStart/flux="$wsFlux"; do
+              warmStart/flux="$wsFlux" warmStart/maxCoefficient="$wsMaxCoef"; do
       [ -z "${kv#*=}" ] || foamDictionary "$fluid/system/fsiDict" -entry "coupled/${kv%%=*}" -set "${kv#*=}" > /dev/null
     done
   fi
