@@ -10,7 +10,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
 
 using namespace fsi;
 
@@ -93,4 +97,85 @@ TEST(Viscoelastic, UniaxialCreepMatchesAnalyticCompliance)
     // problem), never more than one factorization per distinct dt.
     EXPECT_LT(solver.factorizationCount(), 4);
     EXPECT_GE(solver.factorizationCount(), 1);
+}
+
+// Creep on long steps, where a fast term meets a slow creep: Abaqus g = (0.3, 0.3), tau = (1,
+// 1000) s, G0 = 1 MPa, K = 10 MPa; dt from 0.1 s, x1.5 per level, at most 300 s, to 3 000 s (29
+// levels). From t = 100 s on dt >> 1 s while the strain follows the slow term: the linear strain
+// rule takes the step's mean strain rate where the fast term needs the step's final one (a
+// first-order error in a decelerating creep); the quadratic rule (prony.integration: quadratic)
+// takes the parabola through the last two levels. Both run the structural solver's linear path
+// (the tangent from the committed history, CG on an old factorization). Reference: the creep
+// compliance in closed form, J(t) = (1/G_inf) [1 + sum_k Q(p_k) / (p_k P'(p_k)) e^{p_k t}] with
+// Q(s) = (s + a1)(s + a2), P(s) = Q(s) + gamma1 s (s + a2) + gamma2 s (s + a1), a_i = 1/tau_i,
+// p_k the roots of P (the inverse Laplace transform of Q / (G_inf s P)).
+TEST(Viscoelastic, QuadraticStrainRuleOnLongCreepSteps)
+{
+    const double G0 = 1e6, K = 10e6, sigma0 = 1e4, g = 0.3;
+    const double Ginf = G0 * (1.0 - 2.0 * g), gamma = g / (1.0 - 2.0 * g);
+    const double a1 = 1.0, a2 = 1e-3;
+    // P(s) = A s^2 + B s + C
+    const double A = 1.0 + 2.0 * gamma, B = a1 + a2 + gamma * (a1 + a2), C = a1 * a2;
+    const double root = std::sqrt(B * B - 4.0 * A * C);
+    const double p[2] = {(-B + root) / (2.0 * A), (-B - root) / (2.0 * A)};
+    auto compliance = [&](double t)
+    {
+        double sum = 1.0;
+        for (double pk : p)
+            sum += (pk + a1) * (pk + a2) / (pk * (2.0 * A * pk + B)) * std::exp(pk * t);
+        return sum / Ginf;
+    };
+    ASSERT_NEAR(compliance(0.0), 1.0 / G0, 1e-12 / G0); // the instantaneous modulus
+
+    fsi::testing::BlockSpec spec;
+    spec.cells = {1, 1, 1};
+    const auto file = fsi::testing::makeBlockMesh(fsi::testing::tempFile("creep-long.msh"),
+                                                  fsi::testing::TestCell::Tet10, spec);
+    const mesh::Mesh m = mesh::readGmsh(file, {"solid", {"x0", "y0", "z0", "x1"}}, true);
+    std::vector<double> times{0.0};
+    for (double dt = 0.1; times.back() < 3000.0; dt = std::min(1.5 * dt, 300.0))
+        times.push_back(std::min(times.back() + dt, 3000.0));
+    // the largest relative error of u_x = eps_xx over the levels from t = 100 s on
+    auto lateError = [&](const std::string& integration)
+    {
+        material::MaterialParameters mp;
+        mp.type = "viscoelastic";
+        mp.bulkModulus = K;
+        mp.shearModulus = G0;
+        mp.modulusBasis = "instantaneous";
+        mp.pronyConvention = "abaqus-g";
+        mp.pronyCoefficients = {g, g};
+        mp.pronyTimes = {1.0 / a1, 1.0 / a2};
+        mp.pronyIntegration = integration;
+        const auto law = material::makeMaterial(mp, material::Kinematics::SmallStrain);
+        fe::ProblemDefinition problem;
+        for (int c = 0; c < 3; ++c)
+        {
+            fe::PrescribedDisplacement d;
+            d.surface = std::string(1, "xyz"[c]) + "0";
+            d.value[c] = 0.0;
+            problem.displacements.push_back(d);
+        }
+        problem.tractions.push_back({"x1", Eigen::Vector3d(sigma0, 0, 0)});
+        problem.newton.residualTolerance = 1e-12;
+        fe::StructuralSolver solver(MPI_COMM_WORLD, m, *law, problem);
+        const int probe = m.nearestNode(Eigen::Vector3d(1, 0.5, 0.5));
+        double worst = 0.0;
+        for (std::size_t n = 0; n < times.size(); ++n)
+        {
+            const auto r = solver.solve({times[n], n == 0 ? 0.0 : times[n] - times[n - 1]});
+            EXPECT_TRUE(r.converged) << integration << " t = " << times[n] << ": " << r.message;
+            solver.acceptLevel();
+            const double exact = sigma0 * (1.0 / (9.0 * K) + compliance(times[n]) / 3.0);
+            if (times[n] >= 100.0)
+                worst = std::max(worst, std::abs(solver.displacement()[3 * probe] - exact) / exact);
+        }
+        return worst;
+    };
+    const double linear = lateError("linear"), quadratic = lateError("quadratic");
+    std::printf("%zu levels to 3000 s: largest relative creep error from t = 100 s, linear rule "
+                "%.3e, quadratic %.3e\n",
+                times.size(), linear, quadratic);
+    EXPECT_LT(quadratic, 0.25 * linear);
+    EXPECT_LT(quadratic, 1e-4);
 }

@@ -148,12 +148,17 @@ std::optional<std::pair<double, double>> isotropicModuli(const material::Matrix6
     return std::make_pair(lambda, mu);
 }
 
-// The law's tangent at `step` for a law linear in the strain (independent of strain and
-// history): evaluated at zero strain with a virgin history.
-material::Matrix6 linearLawTangent(const material::Material& law, const material::TimeStep& step)
+// The law's tangent at `step` for a law linear in the strain (independent of the strain, and
+// of the history but for the committed level's step length, the same at every point: the
+// quadratic Prony rule): evaluated at zero strain with `committed` (one point's committed
+// history; null: a virgin history).
+material::Matrix6 linearLawTangent(const material::Material& law, const material::TimeStep& step,
+                                   const double* committed)
 {
     std::vector<double> history(law.historySize());
-    if (!history.empty())
+    if (!history.empty() && committed)
+        std::copy(committed, committed + history.size(), history.begin());
+    else if (!history.empty())
         law.initialiseHistory(history.data());
     Vector6 stress;
     material::Matrix6 D;
@@ -370,11 +375,17 @@ void StructuralSolver::buildExternalLoads(double factor, const InterfaceLoads& i
     }
 }
 
+const double* StructuralSolver::firstCommittedHistory() const
+{
+    return law_.historySize() > 0 && !committedHistory_.empty() ? committedHistory_.data()
+                                                                : nullptr;
+}
+
 bool StructuralSolver::linearTangentFromParts()
 {
     if (!linearProblem_)
         return false;
-    const auto moduli = isotropicModuli(linearLawTangent(law_, step_));
+    const auto moduli = isotropicModuli(linearLawTangent(law_, step_, firstCommittedHistory()));
     if (!moduli)
         return false;
     if (!isotropicPartsTried_)
@@ -453,7 +464,7 @@ bool StructuralSolver::affineStressFor(const material::TimeStep& step)
     const std::size_t points = static_cast<std::size_t>(pointOffset_.back());
     stressOffsets_.resize(6 * points);
     Vector6 stress;
-    affineTangent_ = linearLawTangent(law_, step);
+    affineTangent_ = linearLawTangent(law_, step, firstCommittedHistory());
     material::Matrix6 D;
     for (std::size_t p = 0; p < points; ++p)
     {
@@ -1181,7 +1192,9 @@ void StructuralSolver::restoreCommittedState(const std::vector<CommittedState>& 
         }
         if (offset != p.history.size())
             fail("material history of " + std::to_string(p.history.size()) + " values, expected " +
-                 std::to_string(offset));
+                 std::to_string(offset) +
+                 "; a viscoelastic checkpoint restarts only with the prony.integration it was "
+                 "written with");
     }
     for (std::size_t k = 0; k < ownCells_.size(); ++k)
     {

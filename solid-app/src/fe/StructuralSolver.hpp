@@ -296,6 +296,9 @@ private:
     // law is affine in the strain); the force-only assemblies of a level then evaluate no law.
     // Built at the first call for a step/history; false for a nonlinear problem.
     bool affineStressFor(const material::TimeStep& step);
+    // This rank's first integration point's committed history (null: none): what a linear
+    // law's tangent may depend on besides the step (linearLawTangent).
+    const double* firstCommittedHistory() const;
     // The residual allowance of a linear solve inside Newton: a tenth of Newton's tolerance
     // for the reference force ref [N] (see the header comment).
     double linearSolveAllowance(double ref) const;

@@ -39,6 +39,10 @@ struct MaterialParameters
     std::string pronyConvention; // "long-term-gamma" | "abaqus-g"
     std::vector<double> pronyCoefficients;
     std::vector<double> pronyTimes; // [s]
+    // How the Prony recursion interpolates the strain over a step: "linear" (exact for strain
+    // linear in time) | "quadratic" (through the last two accepted levels too: second order in
+    // the step for curved histories; config/solid.example.yaml). Empty: linear.
+    std::string pronyIntegration;
 
     // Used only to build error messages: "<file>: <keyPrefix>.<key> ...".
     std::string file = "config";

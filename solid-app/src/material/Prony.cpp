@@ -32,6 +32,14 @@ double pronyIncrementFactor(double xi)
     return -std::expm1(-xi) / xi;
 }
 
+double pronyCurvatureFactor(double xi)
+{
+    if (xi < 1e-3)
+        return xi / 6.0 - xi * xi / 12.0 + xi * xi * xi / 40.0;
+    const double phi = pronyIncrementFactor(xi);
+    return 2.0 * (1.0 - phi) / xi - phi;
+}
+
 double relaxationModulus(double longTermShearModulus, const std::vector<double>& gamma,
                          const std::vector<double>& tau, double t)
 {

@@ -16,6 +16,12 @@ std::vector<double> abaqusGFromGamma(const std::vector<double>& gamma);
 // full accuracy for tiny xi, -> 1/xi (no overflow) for huge xi.
 double pronyIncrementFactor(double xi);
 
+// 2 (1 - phi) / xi - phi with phi = pronyIncrementFactor(xi), xi >= 0: the weight of a step's
+// strain curvature in the Prony recursion with quadratic strain interpolation (Viscoelastic).
+// xi/6 - xi^2/12 + xi^3/40 below xi = 1e-3 (no cancellation); exact 0 at xi = 0; -> 1/xi for
+// huge xi.
+double pronyCurvatureFactor(double xi);
+
 // Relaxation modulus G(t) = G_inf (1 + sum gamma_i e^{-t/tau_i}) [Pa].
 double relaxationModulus(double longTermShearModulus, const std::vector<double>& gamma,
                          const std::vector<double>& tau, double t);

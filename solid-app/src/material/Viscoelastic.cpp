@@ -39,10 +39,12 @@ void parseViscoelastic(const config::Block& b, MaterialParameters& p)
     readElasticModuli(b, p);
     p.modulusBasis = b.choice("modulus_basis", {"long-term", "instantaneous"});
     const config::Block prony = b.block("prony");
-    prony.allowOnly({"convention", "coefficients", "times"});
+    prony.allowOnly({"convention", "coefficients", "times", "integration"});
     p.pronyConvention = prony.choice("convention", {"long-term-gamma", "abaqus-g"});
     p.pronyCoefficients = prony.numbers("coefficients");
     p.pronyTimes = prony.numbers("times");
+    if (prony.has("integration"))
+        p.pronyIntegration = prony.choice("integration", {"linear", "quadratic"});
 }
 
 void validateViscoelastic(const MaterialParameters& p)
@@ -63,6 +65,10 @@ void validateViscoelastic(const MaterialParameters& p)
              "= '" + p.pronyConvention + "' is unknown; use long-term-gamma or abaqus-g");
     const auto& coefficients = p.pronyCoefficients;
     const auto& times = p.pronyTimes;
+    if (!p.pronyIntegration.empty() && p.pronyIntegration != "linear" &&
+        p.pronyIntegration != "quadratic")
+        fail("prony.integration",
+             "= '" + p.pronyIntegration + "' is unknown; use linear or quadratic");
     if (coefficients.empty())
         fail("prony.coefficients", "is empty; give at least one term or use type linear-elastic");
     if (times.size() != coefficients.size())
@@ -107,37 +113,65 @@ MaterialType Viscoelastic::entry()
     t.validate = validateViscoelastic;
     t.make = [](const MaterialParameters& p) -> std::unique_ptr<Material>
     {
-        return std::make_unique<Viscoelastic>(p.bulkModulusValue(), p.longTermShearModulus(),
-                                              p.longTermGamma(), p.pronyTimes);
+        return std::make_unique<Viscoelastic>(
+            p.bulkModulusValue(), p.longTermShearModulus(), p.longTermGamma(), p.pronyTimes,
+            p.pronyIntegration == "quadratic" ? Viscoelastic::Integration::Quadratic
+                                              : Viscoelastic::Integration::Linear);
     };
     return t;
 }
 
 Viscoelastic::Viscoelastic(double bulkModulus, double longTermShearModulus,
-                           std::vector<double> gamma, std::vector<double> tau)
+                           std::vector<double> gamma, std::vector<double> tau,
+                           Integration integration)
     : bulkModulus_(bulkModulus), longTermShearModulus_(longTermShearModulus),
-      gamma_(std::move(gamma)), tau_(std::move(tau))
+      gamma_(std::move(gamma)), tau_(std::move(tau)), integration_(integration)
 {
     if (gamma_.size() != tau_.size())
         throw std::invalid_argument("Viscoelastic: gamma and tau differ in length");
+}
+
+double Viscoelastic::curvatureWeight(const TimeStep& step, const double* history) const
+{
+    if (integration_ != Integration::Quadratic || !(step.dt > 0.0))
+        return 0.0;
+    const double previousDt = history[6 * (gamma_.size() + 2)];
+    return previousDt > 0.0 ? step.dt / (previousDt + step.dt) : 0.0;
+}
+
+double Viscoelastic::advanceTerms(const Vector6& devSigma0, const TimeStep& step,
+                                  const double* history, double* newH, Vector6* termSum) const
+{
+    const std::size_t n = gamma_.size();
+    const Vector6 increment = devSigma0 - ConstMap(history + 6 * n);
+    const double w = curvatureWeight(step, history);
+    // the rate term of the quadratic rule: dt r^n (zero with the linear rule)
+    const Vector6 previousChange =
+        w > 0.0 ? Vector6(step.dt * ConstMap(history + 6 * (n + 1))) : Vector6::Zero();
+    double shearFactor = 1.0;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+        const double xi = step.dt / tau_[i];
+        const double curvature = w > 0.0 ? w * pronyCurvatureFactor(xi) : 0.0;
+        const double a = gamma_[i] * (pronyIncrementFactor(xi) + curvature);
+        const Vector6 term = std::exp(-xi) * ConstMap(history + 6 * i) + a * increment -
+                             gamma_[i] * curvature * previousChange;
+        if (newH)
+            Map(newH + 6 * i) = term;
+        if (termSum)
+            *termSum += term;
+        shearFactor += a;
+    }
+    return shearFactor;
 }
 
 void Viscoelastic::evaluate(const Vector6& strain, const TimeStep& step, const double* history,
                             Vector6& stress, Matrix6& tangent) const
 {
     checkStep(step, history);
-    const std::size_t n = gamma_.size();
     const Vector6 devSigma0 = 2.0 * longTermShearModulus_ * (deviatoricProjector() * strain);
-    const Vector6 increment = devSigma0 - ConstMap(history + 6 * n);
     stress = devSigma0;
-    double shearFactor = 1.0;
-    for (std::size_t i = 0; i < n; ++i)
-    {
-        const double xi = step.dt / tau_[i];
-        const double a = gamma_[i] * pronyIncrementFactor(xi);
-        stress += std::exp(-xi) * ConstMap(history + 6 * i) + a * increment;
-        shearFactor += a;
-    }
+    const double shearFactor = advanceTerms(devSigma0, step, history, nullptr, &stress);
     stress.head<3>().array() += bulkModulus_ * trace(strain);
     tangent = isotropicTangent(bulkModulus_, longTermShearModulus_ * shearFactor);
 }
@@ -148,12 +182,13 @@ void Viscoelastic::updateHistory(const Vector6& strain, const TimeStep& step, co
     checkStep(step, history);
     const std::size_t n = gamma_.size();
     const Vector6 devSigma0 = 2.0 * longTermShearModulus_ * (deviatoricProjector() * strain);
-    const Vector6 increment = devSigma0 - ConstMap(history + 6 * n);
-    for (std::size_t i = 0; i < n; ++i)
+    advanceTerms(devSigma0, step, history, newHistory, nullptr);
+    if (integration_ == Integration::Quadratic)
     {
-        const double xi = step.dt / tau_[i];
-        Map(newHistory + 6 * i) = std::exp(-xi) * ConstMap(history + 6 * i) +
-                                  gamma_[i] * pronyIncrementFactor(xi) * increment;
+        const bool stepped = step.dt > 0.0;
+        Map(newHistory + 6 * (n + 1)) =
+            stepped ? Vector6((devSigma0 - ConstMap(history + 6 * n)) / step.dt) : Vector6::Zero();
+        newHistory[6 * (n + 2)] = stepped ? step.dt : 0.0;
     }
     Map(newHistory + 6 * n) = devSigma0;
 }
