@@ -70,8 +70,9 @@ public:
                                const double* committedHistory, double* newHistory) const = 0;
 
     // True when the stress is affine in the strain for a fixed step and committed history (the
-    // tangent then depends on dt only): with small-strain kinematics the structural problem of a
-    // level is linear. Default false.
+    // tangent then depends on the step and on what every point's committed history shares, e.g.
+    // the previous step's length of Viscoelastic's quadratic rule, not on the strain): with
+    // small-strain kinematics the structural problem of a level is linear. Default false.
     virtual bool isLinearInStrain() const { return false; }
 
     // Stress of an ACCEPTED level from its own history: newHistory is what updateHistory()

@@ -95,7 +95,8 @@ void MaterialParameters::validate() const
 
 void MaterialParameters::requireNoViscoelasticData() const
 {
-    if (!pronyConvention.empty() || !pronyCoefficients.empty() || !pronyTimes.empty())
+    if (!pronyConvention.empty() || !pronyCoefficients.empty() || !pronyTimes.empty() ||
+        !pronyIntegration.empty())
         fail("prony", "is given for type " + type + "; remove it or set type: viscoelastic");
     if (!modulusBasis.empty())
         fail("modulus_basis",
@@ -175,6 +176,7 @@ std::string MaterialParameters::describe() const
     const std::vector<double> gamma = longTermGamma();
     const std::vector<double> g = abaqusGFromGamma(gamma);
     out << " (input: prony.convention " << pronyConvention << ", modulus_basis " << modulusBasis
+        << ", prony.integration " << (pronyIntegration.empty() ? "linear" : pronyIntegration)
         << "; deviatoric Prony series, volumetric elastic)\n";
     for (std::size_t i = 0; i < gamma.size(); ++i)
         out << "  term " << i + 1 << ": gamma (long-term) = " << number(gamma[i])
