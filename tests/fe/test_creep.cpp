@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -24,25 +25,26 @@ double creepCompliance(double t)
 {
     return 2e-6 - 4.2504e-7 * std::exp(-t / 0.142681) - 5.7496e-7 * std::exp(-t / 14.0173);
 }
-} // namespace
-
-TEST(Viscoelastic, UniaxialCreepMatchesAnalyticCompliance)
+// A viscoelastic law: Abaqus g_i and tau_i [s] on G0 = 1 MPa (instantaneous), K = 10 MPa.
+std::unique_ptr<material::Material> viscoelasticLaw(const std::vector<double>& g,
+                                                    const std::vector<double>& tau,
+                                                    const std::string& integration = "")
 {
-    fsi::testing::BlockSpec spec;
-    spec.cells = {2, 2, 2};
-    const auto file = fsi::testing::makeBlockMesh(fsi::testing::tempFile("creep.msh"),
-                                                  fsi::testing::TestCell::Tet10, spec);
-    const mesh::Mesh m = mesh::readGmsh(file, {"solid", {"x0", "y0", "z0", "x1"}}, true);
     material::MaterialParameters mp;
     mp.type = "viscoelastic";
     mp.bulkModulus = 10e6;
     mp.shearModulus = 1e6;
     mp.modulusBasis = "instantaneous";
     mp.pronyConvention = "abaqus-g";
-    mp.pronyCoefficients = {0.3, 0.2};
-    mp.pronyTimes = {0.1, 10.0};
-    const auto law = material::makeMaterial(mp, material::Kinematics::SmallStrain);
-    const double K = 10e6, sigma0 = 1e4;
+    mp.pronyCoefficients = g;
+    mp.pronyTimes = tau;
+    mp.pronyIntegration = integration;
+    return material::makeMaterial(mp, material::Kinematics::SmallStrain);
+}
+
+// The unit cube on rollers at x0, y0, z0 under a uniaxial traction sigma0 [Pa] on x1.
+fe::ProblemDefinition uniaxialTraction(double sigma0)
+{
     fe::ProblemDefinition p;
     for (int c = 0; c < 3; ++c)
     {
@@ -53,7 +55,20 @@ TEST(Viscoelastic, UniaxialCreepMatchesAnalyticCompliance)
     }
     p.tractions.push_back({"x1", Eigen::Vector3d(sigma0, 0, 0)});
     p.newton.residualTolerance = 1e-12;
-    fe::StructuralSolver solver(MPI_COMM_WORLD, m, *law, p);
+    return p;
+}
+} // namespace
+
+TEST(Viscoelastic, UniaxialCreepMatchesAnalyticCompliance)
+{
+    fsi::testing::BlockSpec spec;
+    spec.cells = {2, 2, 2};
+    const auto file = fsi::testing::makeBlockMesh(fsi::testing::tempFile("creep.msh"),
+                                                  fsi::testing::TestCell::Tet10, spec);
+    const mesh::Mesh m = mesh::readGmsh(file, {"solid", {"x0", "y0", "z0", "x1"}}, true);
+    const auto law = viscoelasticLaw({0.3, 0.2}, {0.1, 10.0});
+    const double K = 10e6, sigma0 = 1e4;
+    fe::StructuralSolver solver(MPI_COMM_WORLD, m, *law, uniaxialTraction(sigma0));
     const int probe = m.nearestNode(Eigen::Vector3d(1, 0.5, 0.5));
 
     // time grid: dt = 0.005 to 1 s, 0.05 to 10 s, 1 s to 100 s
@@ -138,27 +153,8 @@ TEST(Viscoelastic, QuadraticStrainRuleOnLongCreepSteps)
     // the largest relative error of u_x = eps_xx over the levels from t = 100 s on
     auto lateError = [&](const std::string& integration)
     {
-        material::MaterialParameters mp;
-        mp.type = "viscoelastic";
-        mp.bulkModulus = K;
-        mp.shearModulus = G0;
-        mp.modulusBasis = "instantaneous";
-        mp.pronyConvention = "abaqus-g";
-        mp.pronyCoefficients = {g, g};
-        mp.pronyTimes = {1.0 / a1, 1.0 / a2};
-        mp.pronyIntegration = integration;
-        const auto law = material::makeMaterial(mp, material::Kinematics::SmallStrain);
-        fe::ProblemDefinition problem;
-        for (int c = 0; c < 3; ++c)
-        {
-            fe::PrescribedDisplacement d;
-            d.surface = std::string(1, "xyz"[c]) + "0";
-            d.value[c] = 0.0;
-            problem.displacements.push_back(d);
-        }
-        problem.tractions.push_back({"x1", Eigen::Vector3d(sigma0, 0, 0)});
-        problem.newton.residualTolerance = 1e-12;
-        fe::StructuralSolver solver(MPI_COMM_WORLD, m, *law, problem);
+        const auto law = viscoelasticLaw({g, g}, {1.0 / a1, 1.0 / a2}, integration);
+        fe::StructuralSolver solver(MPI_COMM_WORLD, m, *law, uniaxialTraction(sigma0));
         const int probe = m.nearestNode(Eigen::Vector3d(1, 0.5, 0.5));
         double worst = 0.0;
         for (std::size_t n = 0; n < times.size(); ++n)

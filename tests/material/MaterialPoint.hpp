@@ -3,6 +3,7 @@
 #pragma once
 
 #include "material/Material.hpp"
+#include "material/MaterialParameters.hpp"
 
 #include <vector>
 
@@ -52,6 +53,21 @@ private:
     double time_ = 0.0;
     bool started_ = false;
 };
+
+// The reference material of reference/prony.md in the paper's long-term convention: K = 10 MPa,
+// G_inf = 0.5 MPa, gamma = (0.6, 0.4), tau = (0.1, 10) s.
+inline MaterialParameters referenceLongTerm()
+{
+    MaterialParameters p;
+    p.type = "viscoelastic";
+    p.bulkModulus = 10e6;
+    p.shearModulus = 0.5e6;
+    p.modulusBasis = "long-term";
+    p.pronyConvention = "long-term-gamma";
+    p.pronyCoefficients = {0.6, 0.4};
+    p.pronyTimes = {0.1, 10.0};
+    return p;
+}
 
 inline Vector6 shearStrain(double gammaXy)
 {

@@ -13,6 +13,7 @@
 
 using namespace fsi::material;
 using fsi::material::test::MaterialPoint;
+using fsi::material::test::referenceLongTerm;
 using fsi::material::test::shearStrain;
 
 namespace
@@ -26,19 +27,6 @@ MaterialParameters referenceAbaqus()
     p.modulusBasis = "instantaneous";
     p.pronyConvention = "abaqus-g";
     p.pronyCoefficients = {0.3, 0.2};
-    p.pronyTimes = {0.1, 10.0};
-    return p;
-}
-
-MaterialParameters referenceLongTerm()
-{
-    MaterialParameters p;
-    p.type = "viscoelastic";
-    p.bulkModulus = 10e6;
-    p.shearModulus = 0.5e6;
-    p.modulusBasis = "long-term";
-    p.pronyConvention = "long-term-gamma";
-    p.pronyCoefficients = {0.6, 0.4};
     p.pronyTimes = {0.1, 10.0};
     return p;
 }

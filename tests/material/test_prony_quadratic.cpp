@@ -18,6 +18,7 @@
 
 using namespace fsi::material;
 using fsi::material::test::MaterialPoint;
+using fsi::material::test::referenceLongTerm;
 using fsi::material::test::shearStrain;
 
 namespace
@@ -147,14 +148,7 @@ TEST(PronyQuadratic, TangentIsTheDerivativeOfTheStressAndAcceptedStressMatches)
 
 TEST(PronyQuadratic, IntegrationKeyIsValidated)
 {
-    MaterialParameters p;
-    p.type = "viscoelastic";
-    p.bulkModulus = 10e6;
-    p.shearModulus = 0.5e6;
-    p.modulusBasis = "long-term";
-    p.pronyConvention = "long-term-gamma";
-    p.pronyCoefficients = kGamma;
-    p.pronyTimes = kTau;
+    MaterialParameters p = referenceLongTerm();
     p.file = "solid.yaml";
     p.pronyIntegration = "quadratic";
     const auto made = makeMaterial(p, Kinematics::SmallStrain);
