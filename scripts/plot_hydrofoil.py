@@ -152,6 +152,17 @@ def interpolate(times, values, t):
     return values[-1]
 
 
+def late_change(times, values, fraction=0.1):
+    """Relative range of `values` over the last `fraction` of the time, the value at the window's
+    start interpolated between the levels around it (a window with one level is not 'steady')."""
+    if len(times) < 2:
+        return float("nan")
+    start = (1.0 - fraction) * times[-1]
+    window = [interpolate(times, values, start)] + [v for t, v in zip(times, values) if t > start]
+    window = [v for v in window if v is not None]
+    return (max(window) - min(window)) / max(abs(values[-1]), 1e-12)
+
+
 def save(fig, ax, xlabel, ylabel, path, legend_size=8):
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
@@ -276,9 +287,8 @@ def main():
     rows.append(("drag_final_N", f"{fx[-1]:.4g}", ""))
     if len(t) > 2:
         # approach to steady state: relative change of the lift over the last 10 % of the time
-        tail = [v for tt, v in zip(t, lift) if tt >= 0.9 * t[-1]]
-        spread = (max(tail) - min(tail)) / max(abs(lift[-1]), 1e-12) if tail else float("nan")
-        rows.append(("lift_change_last_10pct_time", f"{spread:.3g}", "nearly steady after ~1 h"))
+        rows.append(("lift_change_last_10pct_time", f"{late_change(t, lift):.3g}",
+                     "nearly steady after ~1 h"))
     if base:
         rows.append(("baseline_lift_N", f"{-float(base['Fy']):.4g}", ""))
         rows.append(("baseline_drag_N", f"{float(base['Fx']):.4g}", ""))

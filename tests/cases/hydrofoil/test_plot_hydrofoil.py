@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""Checks of scripts/plot_hydrofoil.py's tip-section outline (the paper's Fig. 5).
+"""Checks of scripts/plot_hydrofoil.py's tip-section outline (the paper's Fig. 5) and of its
+summary's late lift change.
 Run: /usr/bin/python3 tests/cases/hydrofoil/test_plot_hydrofoil.py"""
 import os
 import sys
@@ -121,6 +122,20 @@ class Figure(unittest.TestCase):
             (x0, y0), (x1, y1) = ax.transData.transform([(0.0, 0.0), (1.0, 1.0)])
             self.assertAlmostEqual((x1 - x0) / (y1 - y0), 1.0, delta=1e-9)
             plt.close(fig)
+
+
+class LateChange(unittest.TestCase):
+    def test_one_level_in_the_window_is_not_steady(self):
+        # the case's last step 3 038 -> 3 600 s: only the final level lies in the last 10 %;
+        # the lift at 3 240 s is interpolated: 0.70 - 0.01 * 202 / 562
+        t, lift = [0.0, 3038.0, 3600.0], [2.0, 0.70, 0.69]
+        expected = (0.70 - 0.01 * 202.0 / 562.0 - 0.69) / 0.69
+        self.assertAlmostEqual(ph.late_change(t, lift), expected, delta=1e-12)
+
+    def test_levels_inside_the_window_count(self):
+        t, lift = [0.0, 3000.0, 3300.0, 3500.0, 3600.0], [2.0, 1.0, 1.3, 0.9, 1.0]
+        # window from 3 240 s: interpolated 1.24, then 1.3, 0.9, 1.0
+        self.assertAlmostEqual(ph.late_change(t, lift), (1.3 - 0.9) / 1.0, delta=1e-12)
 
 
 if __name__ == "__main__":
