@@ -155,14 +155,16 @@ std::optional<std::pair<double, double>> isotropicModuli(const material::Matrix6
 material::Matrix6 linearLawTangent(const material::Material& law, const material::TimeStep& step,
                                    const double* committed)
 {
-    std::vector<double> history(law.historySize());
-    if (!history.empty() && committed)
-        std::copy(committed, committed + history.size(), history.begin());
-    else if (!history.empty())
-        law.initialiseHistory(history.data());
     Vector6 stress;
     material::Matrix6 D;
-    law.evaluate(Vector6::Zero(), step, history.empty() ? nullptr : history.data(), stress, D);
+    if (law.historySize() == 0 || committed)
+    {
+        law.evaluate(Vector6::Zero(), step, committed, stress, D);
+        return D;
+    }
+    std::vector<double> virgin(law.historySize());
+    law.initialiseHistory(virgin.data());
+    law.evaluate(Vector6::Zero(), step, virgin.data(), stress, D);
     return D;
 }
 
