@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""Checks of tools/forceConvergence.py, tools/iterationBand.py, tools/mshinfo.py and tools/foilMotion.py on small
-synthetic inputs, and of tools/mapInitialFields.sh's input checks."""
+"""Checks of tools/forceConvergence.py, tools/iterationBand.py, tools/mshinfo.py, tools/foilMotion.py
+and tools/displacementJumps.py on small synthetic inputs, and of tools/mapInitialFields.sh's
+input checks."""
 import io
 import os
 import sys
@@ -12,6 +13,7 @@ from contextlib import redirect_stdout
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import displacementJumps  # noqa: E402
 import foilMotion  # noqa: E402
 import forceConvergence as fc  # noqa: E402
 import iterationBand  # noqa: E402
@@ -119,6 +121,56 @@ class FoilMotion(unittest.TestCase):
         np.testing.assert_allclose(np.hypot(*(moved[:2, :2] - [0.3685, 0.0]).T),
                                    np.hypot(*(pts[:2, :2] - [0.3685, 0.0]).T), rtol=1e-12)
         self.assertLess(d[0, 1], 0.0)
+
+
+class DisplacementJumps(unittest.TestCase):
+    # two unit quads side by side in z = 0: points 0-5, x in {0, 1, 2}, y in {0, 1}
+    POINTS = np.array([[0, 0, 0], [1, 0, 0], [2, 0, 0], [0, 1, 0], [1, 1, 0], [2, 1, 0]], float)
+    FACES = [[0, 1, 4, 3], [1, 2, 5, 4]]
+
+    def test_a_uniform_stretch_gives_its_strain_on_every_edge(self):
+        rows = displacementJumps.edgeJumps(self.POINTS, 0.03 * self.POINTS, self.FACES)
+        self.assertEqual(len(rows), 7)  # the shared edge 1-4 once
+        np.testing.assert_allclose(rows[:, 0], 0.03, rtol=1e-12)
+
+    def test_a_jump_at_one_point_shows_on_its_edges_only(self):
+        d = 0.03 * self.POINTS
+        d[5] += [0.0, 0.5, 0.0]
+        rows = displacementJumps.edgeJumps(self.POINTS, d, self.FACES)
+        touching = np.linalg.norm(rows[:, 3:] - [2.0, 1.0, 0.0], axis=1) < 0.6  # edges 2-5, 4-5
+        self.assertEqual(touching.sum(), 2)
+        self.assertGreater(rows[touching, 0].min(), 0.4)
+        np.testing.assert_allclose(rows[~touching, 0], 0.03, rtol=1e-12)
+
+    def test_reads_an_ascii_case(self):
+        def foamList(rows, fmt):
+            return f"{len(rows)}\n(\n" + "\n".join(fmt(r) for r in rows) + "\n)\n"
+        vec = lambda r: "(%r %r %r)" % tuple(float(v) for v in r)  # noqa: E731
+        with tempfile.TemporaryDirectory() as case:
+            mesh = os.path.join(case, "constant", "polyMesh")
+            os.makedirs(mesh)
+            os.makedirs(os.path.join(case, "7"))
+            header = "FoamFile\n{\n    format ascii;\n}\n"
+            with open(os.path.join(mesh, "points"), "w") as f:
+                f.write(header + foamList(self.POINTS, vec))
+            faces = [[9, 9, 9]] + self.FACES  # one internal face before the patch
+            with open(os.path.join(mesh, "faces"), "w") as f:
+                f.write(header + foamList(faces, lambda v: f"{len(v)}(" + " ".join(map(str, v)) + ")"))
+            with open(os.path.join(mesh, "boundary"), "w") as f:
+                f.write(header + "1\n(\n    foil\n    {\n        type wall;\n"
+                        "        nFaces 2;\n        startFace 1;\n    }\n)\n")
+            with open(os.path.join(case, "7", "pointDisplacement"), "w") as f:
+                f.write(header + "dimensions [0 1 0 0 0 0 0];\n"
+                        "internalField nonuniform List<vector> " + foamList(0.03 * self.POINTS, vec))
+            rows = displacementJumps.caseJumps(case, "7", "foil")
+            self.assertEqual(len(rows), 7)
+            np.testing.assert_allclose(rows[:, 0], 0.03, rtol=1e-12)
+            out = io.StringIO()
+            with redirect_stdout(out):
+                self.assertEqual(displacementJumps.main([case, "7", "--split", "x", "1.25"]), 0)
+            self.assertIn("x above 1.25: 3 edges, max 0.03", out.getvalue())
+            with self.assertRaises(RuntimeError):
+                displacementJumps.caseJumps(case, "7", "tip")
 
 
 class MapInitialFields(unittest.TestCase):
