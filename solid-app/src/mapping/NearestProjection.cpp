@@ -16,7 +16,7 @@ namespace fsi::mapping
 
 const std::vector<std::string>& NearestProjectionParameters::keys()
 {
-    static const std::vector<std::string> k{"candidate_faces"};
+    static const std::vector<std::string> k{"candidate_faces", "blend"};
     return k;
 }
 
@@ -27,6 +27,7 @@ NearestProjectionParameters NearestProjectionParameters::parse(const config::Blo
     {
         b->allowOnly(keys());
         p.candidateFaces = b->integer("candidate_faces", p.candidateFaces);
+        p.blend = b->number("blend", p.blend);
     }
     return p;
 }
@@ -36,11 +37,20 @@ void NearestProjectionParameters::validate() const
     if (candidateFaces < 1 || candidateFaces > 200)
         throw std::runtime_error("nearest-projection.candidate_faces must be in [1, 200] (got " +
                                  std::to_string(candidateFaces) + "); e.g. 24");
+    if (!(blend >= 0.0 && blend <= 10.0))
+    {
+        std::ostringstream message;
+        message << "nearest-projection.blend must be in [0, 10] (got " << blend
+                << "); 0 = the closest face only, 1 = blend faces up to twice as far";
+        throw std::runtime_error(message.str());
+    }
 }
 
 std::string NearestProjectionParameters::echo() const
 {
-    return "{candidate_faces: " + std::to_string(candidateFaces) + "}";
+    std::ostringstream out;
+    out << "{candidate_faces: " << candidateFaces << ", blend: " << blend << "}";
+    return out.str();
 }
 
 namespace
@@ -151,40 +161,69 @@ void NearestProjection::compute(const PointCloud& source, const PointCloud& targ
     triplets.reserve(static_cast<size_t>(target.rows()) * 9);
     std::vector<Eigen::Index> candidates;
     std::vector<double> centroidDistances;
-    Eigen::VectorXd N, bestN;
+    // each candidate's projection: its distance and shape-function values there
+    std::vector<double> distances;
+    std::vector<Eigen::VectorXd> shapes;
+    Eigen::VectorXd N;
     Eigen::MatrixXd dN;
     Eigen::Matrix3Xd nodes;
+    double extent = 0.0; // the source's bounding-box diagonal: scale of "on the surface"
+    if (source.rows() > 0)
+        extent = (source.colwise().maxCoeff() - source.colwise().minCoeff()).norm();
+    const double onSurface = 1e-12 * extent;
     double sumSquares = 0.0;
     maxDistance_ = 0.0;
     for (Eigen::Index t = 0; t < target.rows(); ++t)
     {
         const Vec3 x = target.row(t).transpose();
         tree.nearest(x.data(), k, candidates, centroidDistances);
+        distances.assign(candidates.size(), std::numeric_limits<double>::infinity());
+        shapes.resize(candidates.size());
         double best = std::numeric_limits<double>::infinity();
-        int bestFace = -1;
-        for (const Eigen::Index f : candidates)
+        int bestCandidate = -1;
+        for (size_t c = 0; c < candidates.size(); ++c)
         {
-            const int face = static_cast<int>(f);
+            const int face = static_cast<int>(candidates[c]);
             const auto& ref = mesh::ReferenceElement::get(faces.types[static_cast<size_t>(face)]);
             nodes.resize(3, faces.numNodes(face));
             for (int a = 0; a < faces.numNodes(face); ++a)
                 nodes.col(a) = source.row(faces.nodes(face)[a]).transpose();
-            double distance = 0.0;
-            projectOntoFace(ref, nodes, x, N, dN, &distance);
-            if (distance < best)
+            projectOntoFace(ref, nodes, x, N, dN, &distances[c]);
+            shapes[c] = N;
+            if (distances[c] < best)
             {
-                best = distance;
-                bestFace = face;
-                bestN = N;
+                best = distances[c];
+                bestCandidate = static_cast<int>(c);
             }
         }
-        if (bestFace < 0)
+        if (bestCandidate < 0)
             throw std::runtime_error("mapping nearest-projection: target point " +
                                      std::to_string(t) +
                                      " has no finite distance to any candidate face (degenerate "
                                      "wetted faces?)");
-        for (int a = 0; a < faces.numNodes(bestFace); ++a)
-            triplets.emplace_back(t, faces.nodes(bestFace)[a], bestN(a));
+        const auto addFace = [&](size_t c, double weight)
+        {
+            const int face = static_cast<int>(candidates[c]);
+            for (int a = 0; a < faces.numNodes(face); ++a)
+                triplets.emplace_back(t, faces.nodes(face)[a], weight * shapes[c](a));
+        };
+        if (params_.blend > 0.0 && best > onSurface)
+        {
+            // weights (1 - s)^2, s = (d_f - d_min) / (blend d_min), normalised
+            const double band = params_.blend * best;
+            double sum = 0.0;
+            for (size_t c = 0; c < candidates.size(); ++c)
+            {
+                const double s = (distances[c] - best) / band;
+                distances[c] = s < 1.0 ? (1.0 - s) * (1.0 - s) : 0.0; // now the weight
+                sum += distances[c];
+            }
+            for (size_t c = 0; c < candidates.size(); ++c)
+                if (distances[c] > 0.0)
+                    addFace(c, distances[c] / sum);
+        }
+        else
+            addFace(static_cast<size_t>(bestCandidate), 1.0);
         maxDistance_ = std::max(maxDistance_, best);
         sumSquares += best * best;
     }

@@ -14,6 +14,18 @@
 //     weights of its projection (the consistent nodal load); total force exactly; total moment
 //     up to sum (x_t - X(xi_t)) x f_t, i.e. exactly for forces along the surface normal.
 // No radius and no linear solve: set-up is a search per target point, an apply a sparse product.
+//
+// blend > 0 makes the map continuous off the surface as well. Inside a convex edge of the source
+// (a fluid surface that cuts the solid's sharp corner) the closest face switches where two faces
+// are equally far, and the value jumps by about |grad u| times the distance between the two
+// projections. With blend b, every candidate face f whose distance d_f is within (1 + b) d_min of
+// the closest one's contributes with weight (1 - s)^2, s = (d_f - d_min) / (b d_min), the weights
+// normalised to one: the jump is spread over a band of width ~b d_min, and the mapped value's slope
+// stays a few |grad u| (on a 90 deg edge 2-6 mm inside: 2.6 |grad u| with b = 1, 3.8 with 0.5,
+// 491 with the closest face alone; test_nearest_projection). Points on the surface (d_min = 0) keep
+// exactly the closest face's value, so the reproduction and conservation properties above are
+// unchanged; a point at distance d off the surface takes a weighted mean of values within ~(2b +
+// b^2)^(1/2) d of its projection instead of the value at the projection.
 #pragma once
 
 #include "mapping/Mapping.hpp"
@@ -34,6 +46,9 @@ struct NearestProjectionParameters
     // Faces examined per target point: those whose centroids are the nearest this many; the
     // closest point is searched on each. In [1, 200].
     int candidateFaces = 24;
+    // Relative width of the band in which equally close faces are blended (see above). 0 = the
+    // closest face only. In [0, 10].
+    double blend = 0.0;
 
     static const std::vector<std::string>& keys();
     static NearestProjectionParameters parse(const config::Block& layer);
