@@ -197,6 +197,27 @@ TEST(CouplingParameters, ForceMappingIsOptionalAndValidatedLikeTheMapping)
               std::string::npos);
 }
 
+// mapping.smoothing_radius: 0 (off) by default, echoed, and a negative radius is a one-line
+// error naming the key.
+TEST(CouplingParameters, MappingSmoothingRadiusIsOptionalAndValidated)
+{
+    EXPECT_EQ(parseText(minimal).mapping.smoothingRadius, 0.0);
+    const auto smoothed = parseText("  convergence: {absolute_tolerance: 1.0e-7}\n"
+                                    "  acceleration: {type: aitken, aitken: {initial_relaxation: "
+                                    "0.5}}\n"
+                                    "  mapping: {type: nearest-projection, smoothing_radius: "
+                                    "2.0e-4}\n");
+    EXPECT_DOUBLE_EQ(smoothed.mapping.smoothingRadius, 2.0e-4);
+    EXPECT_NE(smoothed.echo().find("smoothing_radius: 0.0002"), std::string::npos)
+        << smoothed.echo();
+    const std::string bad = errorOf("  convergence: {absolute_tolerance: 1.0e-7}\n"
+                                    "  acceleration: {type: aitken, aitken: {initial_relaxation: "
+                                    "0.5}}\n"
+                                    "  mapping: {type: nearest-neighbour, smoothing_radius: -1}\n");
+    EXPECT_NE(bad.find("mapping.smoothing_radius"), std::string::npos) << bad;
+    EXPECT_EQ(bad.find('\n'), std::string::npos) << bad;
+}
+
 // Issue 15: a bad RBF coefficient is named under its own block with its value in %g, and the
 // launch timeout is capped (1e10 s overflowed the comm layer's clock).
 TEST(CouplingParameters, StrategyErrorsNameTheirBlockAndKeepSmallValues)

@@ -101,3 +101,15 @@ TEST(MappingApply, NearestProjectionAllocatesNothingAfterTheFirstCall)
     EXPECT_NEAR(v(0, 0), 1.0, 1e-12);            // constants are reproduced
     EXPECT_NEAR(f.sum(), 3.0 * t.rows(), 1e-10); // and the total conserved
 }
+
+TEST(MappingApply, SmoothedMappingAllocatesNothingAfterTheFirstCall)
+{
+    const PointCloud s = solidCylinder(24), t = fluidCylinder(24);
+    MappingParameters p; // nearest-neighbour, smoothed
+    p.smoothingRadius = 0.15;
+    const auto mapping = buildMapping(p, s, t);
+    Values v, f;
+    applyThriceWithoutAllocation(*mapping, v, f);
+    EXPECT_NEAR(v(0, 0), 1.0, 1e-12);
+    EXPECT_NEAR(f.col(0).sum(), double(t.rows()), 1e-9);
+}

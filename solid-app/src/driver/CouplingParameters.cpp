@@ -56,14 +56,14 @@ acceleration::AcceleratorParameters parseAcceleration(const config::Block& b)
     return p;
 }
 
-// mapping: {type: NAME, overlap_tolerance: x, NAME: {coefficients}}; the strategies and their
-// keys come from the mapping layer's registry.
+// mapping: {type: NAME, overlap_tolerance: x, smoothing_radius: r, NAME: {coefficients}}; the
+// strategies and their keys come from the mapping layer's registry.
 mapping::MappingParameters parseMapping(const config::Block& b)
 {
     std::vector<std::string> types;
     for (const auto& t : mapping::mappingTypes())
         types.push_back(t.name);
-    std::vector<std::string> allowed{"type", "overlap_tolerance"};
+    std::vector<std::string> allowed{"type", "overlap_tolerance", "smoothing_radius"};
     for (const auto& t : mapping::mappingTypes())
         if (!t.keys.empty())
             allowed.push_back(t.name);
@@ -72,6 +72,11 @@ mapping::MappingParameters parseMapping(const config::Block& b)
     onlySelectedCoefficients(b, type, types);
     mapping::MappingParameters p = mapping::mappingType(type).parse(b);
     p.overlapTolerance = b.number("overlap_tolerance", p.overlapTolerance);
+    p.smoothingRadius = b.number("smoothing_radius", p.smoothingRadius);
+    if (!(p.smoothingRadius >= 0.0))
+        b.fail("smoothing_radius", "must be >= 0 m (0 = off; e.g. 2e-4, a few fluid wall "
+                                   "spacings), got " +
+                                       config::formatNumber(p.smoothingRadius));
     // a coefficient error is named under the strategy's own block, e.g.
     // coupling.mapping.rbf-wendland-c2 (the block holds the offending key)
     validateIn(p, b, b.has(type) ? type : std::string("type"));
@@ -226,7 +231,8 @@ std::string CouplingParameters::echo() const
     const auto echoMapping = [&s](const char* key, const mapping::MappingParameters& m)
     {
         s << "  " << key << ":\n    type: " << m.type()
-          << "\n    overlap_tolerance: " << m.overlapTolerance << "\n";
+          << "\n    overlap_tolerance: " << m.overlapTolerance
+          << "\n    smoothing_radius: " << m.smoothingRadius << "\n";
         if (!mapping::mappingType(m.type()).keys.empty())
             s << "    " << m.type() << ": " << m.strategy.echo() << "\n";
     };

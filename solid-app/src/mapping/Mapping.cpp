@@ -4,6 +4,7 @@
 #include "config/YamlReader.hpp"
 #include "mapping/NearestNeighbour.hpp"
 #include "mapping/Quality.hpp"
+#include "mapping/TargetSmoothing.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -21,6 +22,10 @@ void MappingParameters::validate() const
         throw std::runtime_error("mapping.overlap_tolerance must be > 0 (relative to the "
                                  "interface size; e.g. 0.1), got " +
                                  config::formatNumber(overlapTolerance));
+    if (!(smoothingRadius >= 0.0) || !std::isfinite(smoothingRadius))
+        throw std::runtime_error("mapping.smoothing_radius must be >= 0 m (0 = off; e.g. 2e-4, "
+                                 "a few fluid wall spacings), got " +
+                                 config::formatNumber(smoothingRadius));
 }
 
 std::unique_ptr<Mapping> makeMapping(const MappingParameters& params)
@@ -56,6 +61,11 @@ std::vector<std::unique_ptr<Mapping>> buildMappings(const MappingParameters& par
         }
         mappings.push_back(std::move(mapping));
     }
+    // smoothing last: withSameSource() above needs the strategy's own first mapping
+    if (params.smoothingRadius > 0.0)
+        for (size_t i = 0; i < mappings.size(); ++i)
+            mappings[i] = std::make_unique<SmoothedMapping>(std::move(mappings[i]), *targets[i],
+                                                            params.smoothingRadius);
     return mappings;
 }
 

@@ -104,6 +104,9 @@ struct MappingParameters
     // checkOverlap(): max distance from a target point to the nearest source point, relative to
     // the source interface size (bounding-box diagonal); larger means the meshes do not match.
     double overlapTolerance = 0.1;
+    // > 0: the consistent direction's values are smoothed on the target cloud by moving least
+    // squares within this radius [m] (H -> S H, forces H^T S^T; TargetSmoothing.hpp). 0 = off.
+    double smoothingRadius = 0.0;
 
     const std::string& type() const { return strategy.type(); }
     // Throws std::runtime_error, one line naming the key (mapping.<key>) and the fix.
@@ -113,7 +116,8 @@ struct MappingParameters
 // Strategy object for params.type (validated), not yet computed.
 std::unique_ptr<Mapping> makeMapping(const MappingParameters& params);
 
-// validate + checkOverlap(source, target, params.overlapTolerance) + makeMapping + compute.
+// validate + checkOverlap(source, target, params.overlapTolerance) + makeMapping + compute
+// (+ the target-side smoothing when params.smoothingRadius > 0).
 // surface: the source's faces, given to every strategy (setSourceSurface); nearest-projection
 // needs them (compute() throws one line without), the others ignore them.
 std::unique_ptr<Mapping> buildMapping(const MappingParameters& params, const PointCloud& source,
