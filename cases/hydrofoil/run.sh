@@ -81,6 +81,13 @@
 #                                           "The first medium reference was off")
 #   --max-fluid-iterations N                cap on the SIMPLE iterations of one coupled fluid solve
 #                                           (fsiDict coupled/maxIterations; default the case's 400)
+#   --mapping-smoothing R                   radius [m] of the moving-least-squares smoothing of the
+#                                           mapped values on the fluid side (the solid configs'
+#                                           coupling.mapping.smoothing_radius; default the case's
+#                                           2e-4; 0 = off). It keeps the boundary-layer mesh's tip
+#                                           cells valid (README, "The tip cells and the mapped
+#                                           displacement's kink"); on the snappy meshes hardly a
+#                                           foil point has a neighbour that close
 #   --restart                               continue an interrupted run in this folder (same
 #                                           options): finished runs are kept (a viscoelastic one
 #                                           continues when --end is later than its last level:
@@ -98,7 +105,7 @@ set -euo pipefail
 source "$FSI_ROOT/scripts/env.sh"
 
 preset=coarse material=both npf=2 nps=2 launch=mpmd tc=0.12 cli=0.5 end="" timeout=900 meshFrom="" restart=0
-flow=laminar scheme=upwind algorithm="" fluidMesh=snappy initFrom="" band="" maxFluidIt="" fluidTol="" couplingTol="" bandWindow="" bandMean="" bandRef="" oscWindow="" wsFlux="" wsMaxCoef=""
+flow=laminar scheme=upwind algorithm="" fluidMesh=snappy initFrom="" band="" maxFluidIt="" fluidTol="" couplingTol="" bandWindow="" bandMean="" bandRef="" oscWindow="" wsFlux="" wsMaxCoef="" mapSmoothing=""
 die() { echo "error: hydrofoil/run.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -127,6 +134,7 @@ while [ $# -gt 0 ]; do
     --fluid-tolerance) [ $# -ge 2 ] || die "--fluid-tolerance needs a value"; fluidTol=$2; shift 2 ;;
     --coupling-tolerance) [ $# -ge 2 ] || die "--coupling-tolerance needs a value in m"; couplingTol=$2; shift 2 ;;
     --max-fluid-iterations) [ $# -ge 2 ] || die "--max-fluid-iterations needs a value"; maxFluidIt=$2; shift 2 ;;
+    --mapping-smoothing) [ $# -ge 2 ] || die "--mapping-smoothing needs a radius in m"; mapSmoothing=$2; shift 2 ;;
     --restart) restart=1; shift ;;
     -h|--help) sed -n '3,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
     *) die "unknown option '$1' (see --help)" ;;
@@ -168,6 +176,10 @@ configsHave() {
     die "--coupling-tolerance '$couplingTol' must be a length in m in (0, 1e-3), e.g. 2e-6"
 [ -z "$couplingTol" ] || configsHave --coupling-tolerance \
     "'absolute_tolerance:' line under coupling.convergence" '^    absolute_tolerance: '
+[ -z "$mapSmoothing" ] || awk -v r="$mapSmoothing" 'BEGIN{exit !(r ~ /^[0-9.eE+-]+$/ && r + 0 >= 0 && r + 0 < 1e-2)}' ||
+    die "--mapping-smoothing '$mapSmoothing' must be a radius in m in [0, 1e-2), e.g. 2e-4 (0 = off)"
+[ -z "$mapSmoothing" ] || configsHave --mapping-smoothing \
+    "'smoothing_radius:' line under coupling.mapping" '^    smoothing_radius: '
 [ -z "$maxFluidIt" ] || { [[ "$maxFluidIt" =~ ^[1-9][0-9]*$ ]] && [ "$maxFluidIt" -ge 200 ]; } ||
     die "--max-fluid-iterations '$maxFluidIt' must be an integer >= 200 (the band rule's two blocks of 100)"
 if [ -n "$bandWindow" ]; then
@@ -256,6 +268,9 @@ for m in "${runs[@]}"; do
   fi
   if [ -n "$couplingTol" ]; then
     sed -i "s/^\(    absolute_tolerance:\) *[0-9.eE+-]*/\1 $couplingTol/" "$cfg"
+  fi
+  if [ -n "$mapSmoothing" ]; then
+    sed -i "s/^\(    smoothing_radius:\) *[0-9.eE+-]*/\1 $mapSmoothing/" "$cfg"
   fi
   if [ -n "$end" ] && [ "$m" = viscoelastic ]; then
     sed -i "s|^    end: .*|    end: $end|; s|^    hit: .*|    hit: []|" "$cfg"

@@ -3,7 +3,7 @@
 """Impose a test displacement on the foil patch of a fluid case (ASCII mesh) for mesh-motion checks.
 
     foilMotion.py CASE [--tip-deflection 0.003] [--tip-twist-deg -8] [--time 0]
-                       [--bending beam|shear] [--roughness AMP]
+                       [--bending beam|shear] [--roughness AMP] [--from FILE]
 
 Writes CASE/TIME/pointDisplacement with the foil patch as `fixedValue` and a nonuniform value
 list: a bending deflection w(z) = d_y = -tip_deflection (z / span)^2 (towards the suction side,
@@ -18,6 +18,11 @@ component (AMP (sin 1.7 i, sin(2.3 i + 1), sin(0.9 i + 2)) for the i-th patch po
 field, unlike any structural displacement, that moves the root points off the root wall by
 different amounts (the parallel-consistency check of test_cgrid_motion.sh; a few um of it
 inverts the um-thin first cells, so it is no mesh-quality check).
+--from FILE takes the foil's displacement from FILE instead, the (ASCII, reconstructed)
+pointDisplacement of a coupled run's level on the same mesh (its internalField at the foil
+points): a coupled level's motion replayed on a fresh copy of the mesh, e.g. to see which part of
+the mapped displacement a mesh-quality failure comes from (cases/hydrofoil/README.md, "The tip
+cells and the mapped displacement's kink").
 Values are in the order of the patch's mesh points (points in order of first appearance in the
 patch faces), which is OpenFOAM's PrimitivePatch::meshPoints order. The mesh must be ASCII
 (foamFormatConvert with writeFormat ascii converts a binary one).
@@ -105,13 +110,24 @@ def main(argv):
     p.add_argument("--time", default="0")
     p.add_argument("--bending", default="beam", choices=["beam", "shear"])
     p.add_argument("--roughness", type=float, default=0.0)
+    p.add_argument("--from", dest="source", default="",
+                   help="pointDisplacement (ASCII, same mesh) whose foil values to impose")
     a = p.parse_args(argv)
     mesh = os.path.join(a.case, "constant", "polyMesh")
     start, count = readPatch(os.path.join(mesh, "boundary"), a.patch)
     faces = readFaces(os.path.join(mesh, "faces"), start, count)
     order = meshPoints(faces)
-    pts = readPoints(os.path.join(mesh, "points"))[order]
-    d = displacement(pts, a.tip_deflection, a.tip_twist_deg, a.bending)
+    allPoints = readPoints(os.path.join(mesh, "points"))
+    pts = allPoints[order]
+    if a.source:
+        given = readPoints(a.source)
+        if len(given) != len(allPoints):
+            raise RuntimeError(f"foilMotion.py: --from {a.source} has {len(given)} values for "
+                               f"the {len(allPoints)} points of {mesh} (another mesh, or a "
+                               f"decomposed part? reconstructPar it first)")
+        d = given[order]
+    else:
+        d = displacement(pts, a.tip_deflection, a.tip_twist_deg, a.bending)
     if a.roughness:
         i = np.arange(len(d), dtype=float)
         d += a.roughness * np.column_stack([np.sin(1.7 * i), np.sin(2.3 * i + 1), np.sin(0.9 * i + 2)])

@@ -5,15 +5,18 @@
 # using stock moveDynamicMesh, and run checkMesh on the moved mesh.
 #
 #   tools/motionCheck.sh --mesh DIR/fluid --out RUNDIR [--tip-twist-deg -4] [--tip-deflection 0.003]
-#                        [--bending beam|shear] [--opening-angle THETA]
+#                        [--bending beam|shear] [--opening-angle THETA] [--displacement-from FILE]
 # (--bending: see foilMotion.py; beam, the default, turns the sections with the slope as the
 # structural solver's displacement does. --opening-angle: fsiInverseDistanceCoeffs openingAngle
 # for this motion, fsiInverseDistance meshes only; the moved points are written with 17 digits
-# in RUNDIR/1/polyMesh/points.) A mesh whose dynamicMeshDict selects fsiInverseDistance
-# needs libfsiMeshMotion.so: taken from the build next to fluid-app on PATH (or FSI_BUILD_DIR).
+# in RUNDIR/1/polyMesh/points. --displacement-from FILE: the foil's displacement of a coupled
+# run's level instead of the bending + twist, FILE = its reconstructed ASCII pointDisplacement on
+# the same mesh, e.g. RUN/fluid-visco/TIME/pointDisplacement after `reconstructPar -time TIME
+# -fields '(pointDisplacement)'` and `foamFormatConvert -time TIME` with writeFormat ascii.)
+# A mesh whose dynamicMeshDict selects fsiInverseDistance needs libfsiMeshMotion.so: taken from the build next to fluid-app on PATH (or FSI_BUILD_DIR).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-mesh="" out="" twist=-4 deflection=0.003 bending=beam openingAngle=""
+mesh="" out="" twist=-4 deflection=0.003 bending=beam openingAngle="" from=""
 while [ $# -gt 0 ]; do
     case "$1" in
         --mesh) mesh="$2"; shift 2 ;;
@@ -22,10 +25,12 @@ while [ $# -gt 0 ]; do
         --tip-deflection) deflection="$2"; shift 2 ;;
         --bending) bending="$2"; shift 2 ;;
         --opening-angle) openingAngle="$2"; shift 2 ;;
+        --displacement-from) from="$(cd "$(dirname "$2")" 2>/dev/null && pwd)/$(basename "$2")"; shift 2 ;;
         *) echo "error: motionCheck.sh: unknown option '$1'" >&2; exit 1 ;;
     esac
 done
 [ -f "$mesh/constant/polyMesh/owner" ] || { echo "error: motionCheck.sh: --mesh '$mesh' has no mesh" >&2; exit 1; }
+[ -z "$from" ] || [ -f "$from" ] || { echo "error: motionCheck.sh: --displacement-from: no file $from" >&2; exit 1; }
 export WM_PROJECT_DIR="${WM_PROJECT_DIR:-/usr/share/openfoam}"
 if grep -q fsiMeshMotion "$mesh/constant/dynamicMeshDict" 2>/dev/null; then
     lib=""
@@ -48,12 +53,15 @@ if [ -n "$openingAngle" ]; then
 fi
 foamDictionary system/controlDict -entry functions -remove > /dev/null
 foamFormatConvert -constant > log.foamFormatConvert 2>&1
-/usr/bin/python3 "$here/foilMotion.py" . --tip-twist-deg "$twist" --tip-deflection "$deflection" --bending "$bending"
+/usr/bin/python3 "$here/foilMotion.py" . --tip-twist-deg "$twist" --tip-deflection "$deflection" --bending "$bending" \
+    ${from:+--from "$from"}
+motion="twist=$twist deg deflection=$deflection m bending=$bending"
+[ -z "$from" ] || motion="displacement from $from"
 moveDynamicMesh > log.moveDynamicMesh 2>&1
 checkMesh -latestTime > log.checkMesh 2>&1 || true
 if grep -q "^Mesh OK" log.checkMesh; then
-    echo "motion twist=$twist deg deflection=$deflection m bending=$bending: Mesh OK ($(grep 'non-orthogonality Max' log.checkMesh | tr -s ' '))"
+    echo "motion $motion: Mesh OK ($(grep 'non-orthogonality Max' log.checkMesh | tr -s ' '))"
 else
-    echo "motion twist=$twist deg deflection=$deflection m bending=$bending: FAILED: $(grep '\*\*\*' log.checkMesh | head -3 | tr -s ' ')"
+    echo "motion $motion: FAILED: $(grep '\*\*\*' log.checkMesh | head -3 | tr -s ' ')"
     exit 1
 fi

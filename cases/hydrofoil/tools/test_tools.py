@@ -5,6 +5,7 @@ and tools/displacementJumps.py on small synthetic inputs, and of tools/mapInitia
 input checks."""
 import io
 import os
+import re
 import sys
 import tempfile
 import unittest
@@ -18,6 +19,42 @@ import foilMotion  # noqa: E402
 import forceConvergence as fc  # noqa: E402
 import iterationBand  # noqa: E402
 import mshinfo  # noqa: E402
+
+
+def _foamList(rows, fmt):
+    return f"{len(rows)}\n(\n" + "\n".join(fmt(r) for r in rows) + "\n)\n"
+
+
+_HEADER = "FoamFile\n{\n    format ascii;\n}\n"
+
+
+def _vec(r):
+    return "(%r %r %r)" % tuple(float(v) for v in r)
+
+
+def writeAsciiCase(case, points, patchFaces):
+    """A minimal ASCII polyMesh in CASE: the points, one internal face, then patch foil."""
+    mesh = os.path.join(case, "constant", "polyMesh")
+    os.makedirs(mesh)
+    with open(os.path.join(mesh, "points"), "w") as f:
+        f.write(_HEADER + _foamList(points, _vec))
+    faces = [[9, 9, 9]] + patchFaces  # one internal face before the patch
+    with open(os.path.join(mesh, "faces"), "w") as f:
+        f.write(_HEADER + _foamList(faces, lambda v: f"{len(v)}(" + " ".join(map(str, v)) + ")"))
+    with open(os.path.join(mesh, "boundary"), "w") as f:
+        f.write(_HEADER + "1\n(\n    foil\n    {\n        type wall;\n"
+                f"        nFaces {len(patchFaces)};\n        startFace 1;\n    }}\n)\n")
+
+
+def writeAsciiPointVectors(path, values, foilEntry=False):
+    """A pointVectorField file with the given internalField (and an empty foil entry)."""
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "w") as f:
+        f.write(_HEADER + "dimensions [0 1 0 0 0 0 0];\n"
+                "internalField nonuniform List<vector> " + _foamList(values, _vec) +
+                ";\nboundaryField\n{\n" +
+                ("    foil\n    {\n        type fixedValue;\n        value uniform (0 0 0);\n    }\n"
+                 if foilEntry else "") + "}\n")
 
 
 class ForceConvergence(unittest.TestCase):
@@ -111,6 +148,29 @@ class FoilMotion(unittest.TestCase):
         self.assertAlmostEqual(beam[8, 2], 0.002 * 0.6)   # y = 2 mm at the tip: 1.2 mm
         np.testing.assert_allclose(shear[:, 2], 0.0)
 
+    def test_from_replays_a_given_field_in_patch_point_order(self):
+        points = DisplacementJumps.POINTS
+        faces = [[4, 5, 2, 1], [3, 4, 1, 0]]  # first appearance: 4 5 2 1 3 0
+        given = 1e-3 * (np.arange(18.0).reshape(6, 3) + 1.0)
+        with tempfile.TemporaryDirectory() as case:
+            writeAsciiCase(case, points, faces)
+            writeAsciiPointVectors(os.path.join(case, "0", "pointDisplacement"), 0 * points, True)
+            source = os.path.join(case, "level.pointDisplacement")
+            writeAsciiPointVectors(source, given)
+            with redirect_stdout(io.StringIO()):
+                self.assertEqual(foilMotion.main([case, "--from", source]), 0)
+            with open(os.path.join(case, "0", "pointDisplacement")) as f:
+                text = f.read()
+            foil = text[text.index("List<vector>", text.index("foil")):]
+            written = foilMotion.readPoints(os.path.join(case, "0", "pointDisplacement"))
+            self.assertEqual(len(written), 6)  # the internalField is left alone
+            values = np.array([[float(v) for v in r.split()]
+                               for r in re.findall(r"\(([^()]*)\)", foil)[:6]])
+            np.testing.assert_allclose(values, given[[4, 5, 2, 1, 3, 0]], rtol=1e-9)
+            writeAsciiPointVectors(source, given[:5])
+            with self.assertRaises(RuntimeError):
+                foilMotion.main([case, "--from", source])
+
     def test_twist_is_a_rotation_about_the_quarter_chord(self):
         pts = np.array([[0.356, 0.0, 0.1], [0.406, 0.0, 0.1], [0.3685, 0.0, 0.1]])
         d = foilMotion.displacement(pts, 0.0, -12.0, "beam")
@@ -143,25 +203,9 @@ class DisplacementJumps(unittest.TestCase):
         np.testing.assert_allclose(rows[~touching, 0], 0.03, rtol=1e-12)
 
     def test_reads_an_ascii_case(self):
-        def foamList(rows, fmt):
-            return f"{len(rows)}\n(\n" + "\n".join(fmt(r) for r in rows) + "\n)\n"
-        vec = lambda r: "(%r %r %r)" % tuple(float(v) for v in r)  # noqa: E731
         with tempfile.TemporaryDirectory() as case:
-            mesh = os.path.join(case, "constant", "polyMesh")
-            os.makedirs(mesh)
-            os.makedirs(os.path.join(case, "7"))
-            header = "FoamFile\n{\n    format ascii;\n}\n"
-            with open(os.path.join(mesh, "points"), "w") as f:
-                f.write(header + foamList(self.POINTS, vec))
-            faces = [[9, 9, 9]] + self.FACES  # one internal face before the patch
-            with open(os.path.join(mesh, "faces"), "w") as f:
-                f.write(header + foamList(faces, lambda v: f"{len(v)}(" + " ".join(map(str, v)) + ")"))
-            with open(os.path.join(mesh, "boundary"), "w") as f:
-                f.write(header + "1\n(\n    foil\n    {\n        type wall;\n"
-                        "        nFaces 2;\n        startFace 1;\n    }\n)\n")
-            with open(os.path.join(case, "7", "pointDisplacement"), "w") as f:
-                f.write(header + "dimensions [0 1 0 0 0 0 0];\n"
-                        "internalField nonuniform List<vector> " + foamList(0.03 * self.POINTS, vec))
+            writeAsciiCase(case, self.POINTS, self.FACES)
+            writeAsciiPointVectors(os.path.join(case, "7", "pointDisplacement"), 0.03 * self.POINTS)
             rows = displacementJumps.caseJumps(case, "7", "foil")
             self.assertEqual(len(rows), 7)
             np.testing.assert_allclose(rows[:, 0], 0.03, rtol=1e-12)

@@ -3,8 +3,8 @@
 # tests/cases/hydrofoil/test_run_options.sh WORK
 #
 # run.sh refuses bad values of --band-tolerance, --band-mean-tolerance, --band-reference-force,
-# --band-window, --oscillation-window, --fluid-tolerance, --coupling-tolerance, --warm-start-flux and
-# --max-fluid-iterations before it writes anything:
+# --band-window, --oscillation-window, --fluid-tolerance, --coupling-tolerance, --warm-start-flux,
+# --mapping-smoothing and --max-fluid-iterations before it writes anything:
 # exit 2, one line on stderr naming the option, no mesh/ or results/ in the run folder. Needs
 # FSI_ROOT (the repository); no OpenFOAM run, no MPI.
 set -uo pipefail
@@ -43,4 +43,7 @@ check --coupling-tolerance 0
 check --warm-start-flux copied
 check --coupling-tolerance 5e-3   # a length in m: 5 mm is no tolerance
 check --band-window 300   # 2 x 300 > the case's cap of 400
+check --mapping-smoothing -1e-4
+check --mapping-smoothing 0.2mm
+check --mapping-smoothing 0.05  # a radius in m: 5 cm smooths the whole foil
 exit $fail
