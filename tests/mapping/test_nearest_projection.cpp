@@ -125,55 +125,42 @@ class NearestProjectionFaces : public ::testing::TestWithParam<CellType>
 
 TEST_P(NearestProjectionFaces, ReproducesLinearFieldsOnACurvedSurface)
 {
+    // blend or not: on the surface the closest face alone carries a point
     const PatchMesh mesh = patch(cylinder, 6, GetParam());
     const PointCloud targets = pointsOnFaces(mesh, 400, 7);
-    const auto map = buildMapping(projection(), mesh.nodes, targets, &mesh.surface);
-    Values mapped(targets.rows(), 3);
-    map->applyConsistent(linearField(mesh.nodes), mapped);
-    const double error = (mapped - linearField(targets)).cwiseAbs().maxCoeff();
-    EXPECT_LT(error, 1e-10) << "largest error of a linear field at points on the faces";
-    const auto* p = dynamic_cast<const NearestProjection*>(map.get());
-    ASSERT_NE(p, nullptr);
-    EXPECT_LT(p->maxDistance(), 1e-10) << "the targets lie on the faces";
+    for (const double blend : {0.0, 1.0})
+    {
+        const auto map = buildMapping(projection(blend), mesh.nodes, targets, &mesh.surface);
+        Values mapped(targets.rows(), 3);
+        map->applyConsistent(linearField(mesh.nodes), mapped);
+        const double error = (mapped - linearField(targets)).cwiseAbs().maxCoeff();
+        EXPECT_LT(error, 1e-10) << "largest error of a linear field on the faces, blend " << blend;
+        const auto* p = dynamic_cast<const NearestProjection*>(map.get());
+        ASSERT_NE(p, nullptr);
+        EXPECT_LT(p->maxDistance(), 1e-10) << "the targets lie on the faces";
+    }
 }
 
 TEST_P(NearestProjectionFaces, ConservesForceAndMomentOfForcesOnTheSurface)
 {
     const PatchMesh mesh = patch(cylinder, 5, GetParam());
     const PointCloud targets = pointsOnFaces(mesh, 300, 11);
-    const auto map = buildMapping(projection(), mesh.nodes, targets, &mesh.surface);
     std::mt19937 random(3);
     std::normal_distribution<double> normal;
     Values forces(targets.rows(), 3);
     for (Eigen::Index i = 0; i < forces.size(); ++i)
         forces.data()[i] = normal(random);
-    Values nodal(mesh.nodes.rows(), 3);
-    map->applyConservative(forces, nodal);
     const Eigen::Vector3d total = forces.colwise().sum().transpose();
-    EXPECT_LT((nodal.colwise().sum().transpose() - total).norm(), 1e-11 * forces.norm());
-    EXPECT_LT((totalMoment(mesh.nodes, nodal) - totalMoment(targets, forces)).norm(),
-              1e-11 * forces.norm());
-}
-
-TEST_P(NearestProjectionFaces, BlendKeepsTheSurfacePropertiesExactly)
-{
-    // on the surface the closest face alone carries a point, blend or not
-    const PatchMesh mesh = patch(cylinder, 5, GetParam());
-    const PointCloud targets = pointsOnFaces(mesh, 300, 13);
-    const auto map = buildMapping(projection(1.0), mesh.nodes, targets, &mesh.surface);
-    Values mapped(targets.rows(), 3);
-    map->applyConsistent(linearField(mesh.nodes), mapped);
-    EXPECT_LT((mapped - linearField(targets)).cwiseAbs().maxCoeff(), 1e-10);
-    std::mt19937 random(5);
-    std::normal_distribution<double> normal;
-    Values forces(targets.rows(), 3);
-    for (Eigen::Index i = 0; i < forces.size(); ++i)
-        forces.data()[i] = normal(random);
-    Values nodal(mesh.nodes.rows(), 3);
-    map->applyConservative(forces, nodal);
-    EXPECT_LT((nodal.colwise().sum() - forces.colwise().sum()).norm(), 1e-11 * forces.norm());
-    EXPECT_LT((totalMoment(mesh.nodes, nodal) - totalMoment(targets, forces)).norm(),
-              1e-11 * forces.norm());
+    for (const double blend : {0.0, 1.0})
+    {
+        const auto map = buildMapping(projection(blend), mesh.nodes, targets, &mesh.surface);
+        Values nodal(mesh.nodes.rows(), 3);
+        map->applyConservative(forces, nodal);
+        EXPECT_LT((nodal.colwise().sum().transpose() - total).norm(), 1e-11 * forces.norm());
+        EXPECT_LT((totalMoment(mesh.nodes, nodal) - totalMoment(targets, forces)).norm(),
+                  1e-11 * forces.norm())
+            << "blend " << blend;
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(Faces, NearestProjectionFaces,

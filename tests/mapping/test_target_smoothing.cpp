@@ -16,6 +16,7 @@
 
 using namespace fsi::mapping;
 using fsi::mapping::test::corner;
+using fsi::mapping::test::faceForces;
 using fsi::mapping::test::fluidCylinder;
 using fsi::mapping::test::linearField;
 using fsi::mapping::test::solidCylinder;
@@ -40,11 +41,7 @@ TEST(TargetSmoothing, TransposeKeepsTotalForceAndMoment)
 {
     const PointCloud points = corner(17, 0.3, 0.0);
     const SmoothingOperator S = movingLeastSquaresSmoother(points, 0.2);
-    std::mt19937 random(9);
-    std::normal_distribution<double> normal;
-    Values forces(points.rows(), 3);
-    for (Eigen::Index i = 0; i < forces.size(); ++i)
-        forces.data()[i] = normal(random);
+    const Values forces = faceForces(points.rows());
     const Values moved = S.transpose() * forces;
     EXPECT_LT((moved.colwise().sum() - forces.colwise().sum()).norm(), 1e-11 * forces.norm());
     EXPECT_LT((totalMoment(points, moved) - totalMoment(points, forces)).norm(),
@@ -80,11 +77,7 @@ TEST(TargetSmoothing, SmoothedMappingKeepsConsistencyAndConservation)
     Values mapped(t.rows(), 3);
     map->applyConsistent(linearField(s), mapped);
     EXPECT_LT((mapped - linearField(t)).cwiseAbs().maxCoeff(), 1e-6);
-    std::mt19937 random(2);
-    std::normal_distribution<double> normal;
-    Values forces(t.rows(), 3);
-    for (Eigen::Index i = 0; i < forces.size(); ++i)
-        forces.data()[i] = normal(random);
+    const Values forces = faceForces(t.rows());
     Values nodal(s.rows(), 3);
     map->applyConservative(forces, nodal);
     EXPECT_LT((nodal.colwise().sum() - forces.colwise().sum()).norm(), 1e-10 * forces.norm());
