@@ -162,7 +162,7 @@ void NearestProjection::compute(const PointCloud& source, const PointCloud& targ
     std::vector<Eigen::Index> candidates;
     std::vector<double> centroidDistances;
     // each candidate's projection: its distance and shape-function values there
-    std::vector<double> distances;
+    std::vector<double> distances, blendWeights;
     std::vector<Eigen::VectorXd> shapes;
     Eigen::VectorXd N;
     Eigen::MatrixXd dN;
@@ -211,16 +211,17 @@ void NearestProjection::compute(const PointCloud& source, const PointCloud& targ
         {
             // weights (1 - s)^2, s = (d_f - d_min) / (blend d_min), normalised
             const double band = params_.blend * best;
+            blendWeights.assign(candidates.size(), 0.0);
             double sum = 0.0;
             for (size_t c = 0; c < candidates.size(); ++c)
             {
                 const double s = (distances[c] - best) / band;
-                distances[c] = s < 1.0 ? (1.0 - s) * (1.0 - s) : 0.0; // now the weight
-                sum += distances[c];
+                blendWeights[c] = s < 1.0 ? (1.0 - s) * (1.0 - s) : 0.0;
+                sum += blendWeights[c];
             }
             for (size_t c = 0; c < candidates.size(); ++c)
-                if (distances[c] > 0.0)
-                    addFace(c, distances[c] / sum);
+                if (blendWeights[c] > 0.0)
+                    addFace(c, blendWeights[c] / sum);
         }
         else
             addFace(static_cast<size_t>(bestCandidate), 1.0);

@@ -22,10 +22,11 @@
 // the closest one's contributes with weight (1 - s)^2, s = (d_f - d_min) / (b d_min), the weights
 // normalised to one: the jump is spread over a band of width ~b d_min, and the mapped value's slope
 // stays a few |grad u| (on a 90 deg edge 2-6 mm inside: 2.6 |grad u| with b = 1, 3.8 with 0.5,
-// 491 with the closest face alone; test_nearest_projection). Points on the surface (d_min = 0) keep
-// exactly the closest face's value, so the reproduction and conservation properties above are
-// unchanged; a point at distance d off the surface takes a weighted mean of values within ~(2b +
-// b^2)^(1/2) d of its projection instead of the value at the projection.
+// 491 with the closest face alone; test_nearest_projection bounds them by 3, 4.5 and 50). Points on
+// the surface (d_min = 0) keep exactly the closest face's value, so the reproduction and
+// conservation properties above are unchanged; a point at distance d off the surface takes a
+// weighted mean of values within ~(2b + b^2)^(1/2) d of its projection instead of the value at the
+// projection.
 #pragma once
 
 #include "mapping/Mapping.hpp"
