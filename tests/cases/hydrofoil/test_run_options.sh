@@ -7,6 +7,8 @@
 # --mapping-smoothing and --max-fluid-iterations before it writes anything:
 # exit 2, one line on stderr naming the option, no mesh/ or results/ in the run folder. Needs
 # FSI_ROOT (the repository); no OpenFOAM run, no MPI.
+# Also: `scripts/run cases/hydrofoil --help` prints run.sh's options and exits 0 without setup,
+# build or a run folder.
 set -uo pipefail
 work=${1:?usage: test_run_options.sh WORK}
 : "${FSI_ROOT:?set FSI_ROOT to the repository}"
@@ -46,4 +48,16 @@ check --band-window 300   # 2 x 300 > the case's cap of 400
 check --mapping-smoothing -1e-4
 check --mapping-smoothing 0.2mm
 check --mapping-smoothing 0.05  # a radius in m: 5 cm smooths the whole foil
+help_out=$work/help-run
+rm -rf "$help_out"
+if ! "$FSI_ROOT/scripts/run" "$FSI_ROOT/cases/hydrofoil" --preset medium --out "$help_out" --help \
+        > "$work/help.txt" 2>&1; then
+    echo "FAIL: scripts/run cases/hydrofoil --help: non-zero exit"; cat "$work/help.txt"; fail=1
+elif ! grep -q -- "--mapping-smoothing R" "$work/help.txt"; then
+    echo "FAIL: scripts/run cases/hydrofoil --help: run.sh's options missing"; fail=1
+elif [ -e "$help_out" ] || grep -q '^\[setup\]' "$work/help.txt"; then
+    echo "FAIL: scripts/run cases/hydrofoil --help: ran setup or made the run folder"; fail=1
+else
+    echo "ok: scripts/run cases/hydrofoil --help"
+fi
 exit $fail
