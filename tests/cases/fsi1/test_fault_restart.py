@@ -24,38 +24,13 @@ import time
 
 here = os.path.dirname(os.path.abspath(__file__))
 root = os.environ.get("FSI_ROOT") or os.path.abspath(os.path.join(here, "..", "..", ".."))
+sys.path.insert(0, os.path.join(root, "scripts", "verify.d", "faults"))
+from processes import comm_name, descendants  # noqa: E402
 
 
 def fail(msg):
     print("FAIL: " + msg)
     sys.exit(1)
-
-
-def descendants(pid):
-    children = {}
-    for p in os.listdir("/proc"):
-        if not p.isdigit():
-            continue
-        try:
-            with open("/proc/%s/stat" % p) as f:
-                fields = f.read().rsplit(")", 1)[1].split()
-            children.setdefault(int(fields[1]), []).append(int(p))
-        except OSError:
-            pass
-    out, todo = [], [pid]
-    while todo:
-        for c in children.get(todo.pop(), []):
-            out.append(c)
-            todo.append(c)
-    return out
-
-
-def comm_name(pid):
-    try:
-        with open("/proc/%d/comm" % pid) as f:
-            return f.read().strip()
-    except OSError:
-        return ""
 
 
 def history(run):
