@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
 // mapping-bench [max_points] [--min N] [--kinds a,b,...] [--wendland-radius R]
-//               [--wendland-solver auto|mumps|direct|iterative] : set-up time,
+//               [--wendland-solver auto|mumps|direct|iterative] [--smoothing-radius F] : set-up time,
 // apply time, memory and accuracy of each mapping against interface size, on a synthetic
 // foil-like surface.
 //
@@ -19,7 +19,10 @@
 // process, before the resident-set baseline; skipped above 1e5), rbf-thin-plate (dense; skipped
 // above 4e3), nearest-projection (onto the solid grid's Quad4 faces, bilinear; its lin_err is
 // the fluid centroids' distance to the flat faces, not round-off). Wendland lines end with
-// solver=S, the solver in use.
+// solver=S, the solver in use. --smoothing-radius F (default 0, off): every kind with the
+// target-side moving-least-squares smoothing (mapping.smoothing_radius) of radius F mean fluid
+// spacings (F >= 1.5 so that every fluid point has neighbours); the lines then end with
+// smoothing_m=R, the radius in m.
 //
 // One line per kind and size:
 //   mapping-bench: kind=K n=N setup_s=X apply_s=X rss_mb=X max_rel_err=X <more fields>
@@ -198,14 +201,16 @@ template <class F> Timing timePerCall(F&& call)
 }
 
 // One case, in the calling (child) process; prints its line. wendlandRadius [m], 0: 4 spacings.
+// smoothing: the target-side smoothing radius in mean fluid spacings (0: off).
 void runCase(const std::string& kind, long size, double wendlandRadius,
-             const std::string& wendlandSolver)
+             const std::string& wendlandSolver, double smoothing)
 {
     const int nAround = 2 * std::max(2, int(std::lround(std::sqrt(2.0 * size) / 2.0)));
     const PointCloud s = solidFoil(nAround);
     const int mAround = int(std::lround(std::sqrt(2.0) * nAround));
     const PointCloud t = fluidFoil(mAround, std::max(1, mAround / 2));
-    const double h = 2.03 / nAround; // mean solid spacing (perimeter ~2.03 m) [m]
+    const double h = 2.03 / nAround;  // mean solid spacing (perimeter ~2.03 m) [m]
+    const double ht = 2.03 / mAround; // mean fluid spacing [m]
     const Values smooth = field(s, false), linear = field(s, true);
     const Values smoothExact = field(t, false), linearExact = field(t, true);
     Values mapped(t.rows(), 3), back(s.rows(), 3);
@@ -217,6 +222,7 @@ void runCase(const std::string& kind, long size, double wendlandRadius,
         w->supportRadius = wendlandRadius > 0.0 ? wendlandRadius : 4.0 * h;
         w->solver = wendlandSolver;
     }
+    params.smoothingRadius = smoothing * ht;
     const double rss0 = statusMiB("VmRSS");
     const bool peakReset = resetPeak();
     const double cpu0 = cpuSeconds(), wall0 = wallSeconds();
@@ -230,7 +236,9 @@ void runCase(const std::string& kind, long size, double wendlandRadius,
     const Timing conservative = timePerCall([&] { mapping->applyConservative(smoothExact, back); });
     const double peak = statusMiB("VmHWM");
     const auto* wendland = dynamic_cast<const RbfWendlandC2*>(mapping.get());
-    const std::string solver = wendland ? " solver=" + wendland->solverInUse() : "";
+    std::string solver = wendland ? " solver=" + wendland->solverInUse() : "";
+    if (params.smoothingRadius > 0.0)
+        solver += " smoothing_m=" + std::to_string(params.smoothingRadius);
     std::printf("mapping-bench: kind=%s n=%ld setup_s=%.3g apply_s=%.3g rss_mb=%.0f "
                 "max_rel_err=%.2e n_target=%ld setup_wall_s=%.3g apply_wall_s=%.3g "
                 "conservative_s=%.3g peak_rss_mb=%.0f lin_err=%.1e%s%s\n",
@@ -254,7 +262,7 @@ int main(int argc, char** argv)
 try
 {
     long maxPoints = 100000, minPoints = 1000;
-    double wendlandRadius = 0.0;
+    double wendlandRadius = 0.0, smoothing = 0.0;
     std::string wendlandSolver = "auto";
     std::vector<std::string> kinds{"nearest-neighbour", "rbf-pu", "rbf-wendland-c2",
                                    "rbf-thin-plate", "nearest-projection"};
@@ -281,12 +289,21 @@ try
                                          "iterative (got '" +
                                          wendlandSolver + "')");
         }
+        else if (arg == "--smoothing-radius" && a + 1 < argc)
+        {
+            smoothing = std::atof(argv[++a]);
+            if (!(smoothing == 0.0 || (smoothing >= 1.5 && smoothing <= 100.0)))
+                throw std::runtime_error("--smoothing-radius must be 0 (off) or in [1.5, 100] "
+                                         "mean fluid spacings (got '" +
+                                         std::string(argv[a]) + "')");
+        }
         else if (!arg.empty() && arg[0] != '-')
             maxPoints = std::atol(arg.c_str());
         else
             throw std::runtime_error("usage: mapping-bench [max_points] [--min N] "
                                      "[--kinds nearest-neighbour,rbf-pu,...] "
-                                     "[--wendland-radius R] [--wendland-solver S]");
+                                     "[--wendland-radius R] [--wendland-solver S] "
+                                     "[--smoothing-radius F]");
     }
     for (const std::string& kind : kinds)
         for (long size : {1000L, 3000L, 10000L, 30000L, 100000L, 300000L, 1000000L})
@@ -314,7 +331,7 @@ try
                     MPI_Init(nullptr, nullptr);
                 try
                 {
-                    runCase(kind, size, wendlandRadius, wendlandSolver);
+                    runCase(kind, size, wendlandRadius, wendlandSolver, smoothing);
                 }
                 catch (const std::exception& e)
                 {
