@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 //
 // mapping-bench [max_points] [--min N] [--kinds a,b,...] [--wendland-radius R]
-//               [--wendland-solver auto|mumps|direct|iterative] [--smoothing-radius F] : set-up time,
+//               [--wendland-solver auto|mumps|direct|iterative] [--smoothing-radius F] : set-up
+//               time,
 // apply time, memory and accuracy of each mapping against interface size, on a synthetic
 // foil-like surface.
 //
