@@ -20,18 +20,28 @@
 #   --end SECONDS                           last time level of the viscoelastic run (3600)
 #   --timeout SECONDS                       longest wait for the peer (default 900)
 #   --mesh-from DIR                         reuse the meshes of an earlier run folder (DIR/mesh)
-#   --flow laminar|transition|turbulent     flow model (default laminar, the paper's): transition =
-#                                           Langtry-Menter kOmegaSSTLM, turbulent = k-omega SST
-#                                           (tools/setFlow.sh; README "Flow models")
+#   --flow laminar|transition|turbulent     flow model (default: turbulent = k-omega SST on the
+#                                           boundary-layer mesh, laminar, the paper's, on the snappy
+#                                           mesh: README, "The case default"); transition =
+#                                           Langtry-Menter kOmegaSSTLM (tools/setFlow.sh; README
+#                                           "Flow models")
 #   --scheme upwind|linearUpwind            convection of U and the turbulence fields (default
 #                                           upwind; linearUpwind: second order, bounded)
-#   --algorithm simple                      classic SIMPLE (consistent no, relaxation p 0.3,
-#                                           U and turbulence 0.7) instead of the case's SIMPLEC
-#                                           (tools/setFlow.sh): SIMPLEC has no steady state on
-#                                           the medium boundary-layer mesh (README, "Mesh study
-#                                           of the rigid foil on the cgrid presets")
-#   --fluid-mesh snappy|cgrid               fluid mesh (mesh.sh; default snappy; cgrid: the
-#                                           boundary-layer mesh, y+ <= 1 on the whole foil)
+#   --algorithm simple|simplec              classic SIMPLE (consistent no, relaxation p 0.3,
+#                                           U and turbulence 0.7) or the case's SIMPLEC (p 1, U
+#                                           0.9; tools/setFlow.sh). Default: simple on the medium
+#                                           and fine boundary-layer meshes (SIMPLEC has no steady
+#                                           state there: README, "Mesh study of the rigid foil on
+#                                           the cgrid presets"), else simplec (README, "The case
+#                                           default")
+#   --fluid-mesh cgrid|snappy               fluid mesh (mesh.sh): cgrid (default), the boundary-
+#                                           layer mesh, y+ <= 1 on the whole foil; snappy, the
+#                                           snappyHexMesh mesh without layers: with it the model
+#                                           defaults to the paper's (laminar, SIMPLEC), so
+#                                           `--fluid-mesh snappy` is the paper's setup (the case
+#                                           default before 2026-12-05). With --mesh-from or
+#                                           --restart the mesh is the one in that folder
+#                                           (mesh/mesh-summary.txt) and the model follows it
 #   --init-from CASE                        start every fluid solve's first iteration from the
 #                                           solution of the OpenFOAM case CASE (reconstructed,
 #                                           latest time; e.g. a rigid.sh/blcheck.sh rigid/case
@@ -105,7 +115,7 @@ set -euo pipefail
 source "$FSI_ROOT/scripts/env.sh"
 
 preset=coarse material=both npf=2 nps=2 launch=mpmd tc=0.12 cli=0.5 end="" timeout=900 meshFrom="" restart=0
-flow=laminar scheme=upwind algorithm="" fluidMesh=snappy initFrom="" band="" maxFluidIt="" fluidTol="" couplingTol="" bandWindow="" bandMean="" bandRef="" oscWindow="" wsFlux="" wsMaxCoef="" mapSmoothing=""
+flow="" scheme=upwind algorithm="" fluidMesh="" initFrom="" band="" maxFluidIt="" fluidTol="" couplingTol="" bandWindow="" bandMean="" bandRef="" oscWindow="" wsFlux="" wsMaxCoef="" mapSmoothing=""
 die() { echo "error: hydrofoil/run.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -142,9 +152,25 @@ while [ $# -gt 0 ]; do
 done
 case "$material" in viscoelastic|baseline|relaxed|both|elastic) ;; *) die "--material must be viscoelastic, baseline, relaxed, both or elastic" ;; esac
 case "$launch" in mpmd|port) ;; *) die "--launch must be mpmd or port" ;; esac
+case "$fluidMesh" in ""|snappy|cgrid) ;; *) die "--fluid-mesh must be cgrid or snappy (got '$fluidMesh')" ;; esac
+case "$algorithm" in ""|simple|simplec) ;; *) die "--algorithm must be simple or simplec (got '$algorithm')" ;; esac
+# The fluid mesh of this run: a new one (--fluid-mesh, default cgrid) or the one of --mesh-from /
+# --restart; the model follows the mesh unless given (tools/meshModel.sh; README, "The case
+# default"): k-omega SST on the boundary-layer mesh (SIMPLEC on coarse, classic SIMPLE on medium
+# and fine), the paper's laminar flow with the case's SIMPLEC on the snappy mesh.
+summary=""
+if [ "$restart" = 1 ]; then summary=$PWD/mesh/mesh-summary.txt; elif [ -n "$meshFrom" ]; then summary=$meshFrom/mesh/mesh-summary.txt; fi
+meshWhat=("$summary")
+[ -n "$summary" ] && [ -f "$summary" ] || meshWhat=("${fluidMesh:-cgrid}" "$preset")
+read -r meshKind defaultFlow defaultAlgorithm < <("$FSI_ROOT/cases/hydrofoil/tools/meshModel.sh" "${meshWhat[@]}") ||
+    die "cannot tell the fluid mesh of ${meshWhat[*]}"
+[ -z "$fluidMesh" ] || [ "$fluidMesh" = "$meshKind" ] ||
+    die "--fluid-mesh $fluidMesh: the fluid mesh in $(dirname "$(dirname "$summary")") is $meshKind (leave --fluid-mesh out with --mesh-from or --restart)"
+fluidMesh=$meshKind
+flow=${flow:-$defaultFlow} algorithm=${algorithm:-$defaultAlgorithm}
+[ "$algorithm" != simplec ] || algorithm=""
 "$FSI_ROOT/cases/hydrofoil/tools/setFlow.sh" --check-only --flow "$flow" --scheme "$scheme" \
     ${algorithm:+--algorithm "$algorithm"}
-case "$fluidMesh" in snappy|cgrid) ;; *) die "--fluid-mesh must be snappy or cgrid" ;; esac
 # positive VALUE [UPPER]: VALUE is a number > 0 (and < UPPER)
 positive() { awk -v v="$1" -v u="${2:-}" 'BEGIN{exit !(v ~ /^[0-9.eE+-]+$/ && v + 0 > 0 && (u == "" || v + 0 < u + 0))}'; }
 [ -z "$band" ] || positive "$band" 1 || die "--band-tolerance '$band' must be a number in (0, 1), e.g. 1e-2"
@@ -211,6 +237,7 @@ else
       --np "$npf" --fluid-mesh "$fluidMesh" > "$run/log.mesh" 2>&1 || { tail -n 20 "$run/log.mesh" >&2; die "meshing failed (log.mesh)"; }
 fi
 grep -E "^fluid:|^solid" "$run/mesh/mesh-summary.txt" 2>/dev/null | sed 's/^/  /' || true
+log "model: flow $flow, convection $scheme, pressure-velocity ${algorithm:-simplec}, fluid mesh $fluidMesh"
 solidMesh=$run/mesh/solid/foil-tet10.msh
 [ -f "$solidMesh" ] || die "no structural mesh $solidMesh"
 

@@ -4,29 +4,31 @@
 #
 # run.sh refuses bad values of --band-tolerance, --band-mean-tolerance, --band-reference-force,
 # --band-window, --oscillation-window, --fluid-tolerance, --coupling-tolerance, --warm-start-flux,
-# --mapping-smoothing and --max-fluid-iterations before it writes anything:
+# --mapping-smoothing, --max-fluid-iterations, --fluid-mesh and --algorithm (and a --fluid-mesh
+# that contradicts the mesh of --mesh-from) before it writes anything:
 # exit 2, one line on stderr naming the option, no mesh/ or results/ in the run folder. Needs
 # FSI_ROOT (the repository); no OpenFOAM run, no MPI.
-# Also: `scripts/run cases/hydrofoil --help` prints run.sh's options and exits 0 without setup,
-# build or a run folder.
+# Also: tools/meshModel.sh names the default model of each mesh and preset, and
+# `scripts/run cases/hydrofoil --help` prints run.sh's options and exits 0 without setup, build
+# or a run folder.
 set -uo pipefail
 work=${1:?usage: test_run_options.sh WORK}
 : "${FSI_ROOT:?set FSI_ROOT to the repository}"
 fail=0
-check() {   # check OPTION VALUE
+check() {   # check OPTION VALUE [MORE OPTIONS...]
   local dir=$work/run
   rm -rf "$dir"; mkdir -p "$dir"; cp -r "$FSI_ROOT/cases/hydrofoil/." "$dir/"
   local rc=0
-  (cd "$dir" && ./run.sh --material baseline "$1" "$2" > out.txt 2> err.txt) || rc=$?
+  (cd "$dir" && ./run.sh --material baseline "$@" > out.txt 2> err.txt) || rc=$?
   local lines; lines=$(wc -l < "$dir/err.txt")
   if [ "$rc" -ne 2 ]; then
-    echo "FAIL: $1 $2: exit $rc, expected 2"; fail=1
+    echo "FAIL: $*: exit $rc, expected 2"; fail=1
   elif [ "$lines" -ne 1 ] || ! grep -q -- "$1" "$dir/err.txt"; then
-    echo "FAIL: $1 $2: expected one line naming $1, got:"; cat "$dir/err.txt"; fail=1
+    echo "FAIL: $*: expected one line naming $1, got:"; cat "$dir/err.txt"; fail=1
   elif [ -e "$dir/mesh" ] || [ -e "$dir/results" ]; then
-    echo "FAIL: $1 $2: wrote mesh/ or results/ before refusing"; fail=1
+    echo "FAIL: $*: wrote mesh/ or results/ before refusing"; fail=1
   else
-    echo "ok: $1 $2 -> $(cat "$dir/err.txt")"
+    echo "ok: $* -> $(cat "$dir/err.txt")"
   fi
 }
 check --band-tolerance 0
@@ -48,6 +50,27 @@ check --band-window 300   # 2 x 300 > the case's cap of 400
 check --mapping-smoothing -1e-4
 check --mapping-smoothing 0.2mm
 check --mapping-smoothing 0.05  # a radius in m: 5 cm smooths the whole foil
+check --fluid-mesh blockMesh
+check --algorithm piso
+# --fluid-mesh that contradicts the mesh of --mesh-from: refused before anything is written
+fake=$work/fake-snappy-run
+rm -rf "$fake"; mkdir -p "$fake/mesh"
+echo "hydrofoil meshes (2026-12-05T00:00:00Z): preset=coarse tc=0.12 cli=0.5 meanline=a08 fluid-mesh=snappy" > "$fake/mesh/mesh-summary.txt"
+check --fluid-mesh cgrid --mesh-from "$fake"
+# tools/meshModel.sh: the model that run.sh defaults to for each mesh (README, "The case default")
+model() {   # model EXPECTED ARGS...
+  local got; got=$("$FSI_ROOT/cases/hydrofoil/tools/meshModel.sh" "${@:2}" 2>&1)
+  if [ "$got" = "$1" ]; then echo "ok: meshModel.sh ${*:2} -> $got"; else echo "FAIL: meshModel.sh ${*:2}: '$got', expected '$1'"; fail=1; fi
+}
+model "cgrid turbulent simplec" cgrid coarse
+model "cgrid turbulent simple" cgrid medium
+model "cgrid turbulent simple" cgrid fine
+model "snappy laminar simplec" snappy coarse
+model "snappy laminar simplec" "$fake/mesh/mesh-summary.txt"
+echo "hydrofoil meshes (2026-12-05T00:00:00Z): preset=medium tc=0.12 cli=0.5 meanline=a08 fluid-mesh=cgrid" > "$fake/mesh/mesh-summary.txt"
+model "cgrid turbulent simple" "$fake/mesh/mesh-summary.txt"
+echo "hydrofoil meshes (2026-11-20T00:00:00Z): preset=coarse tc=0.12 cli=0.5" > "$fake/mesh/mesh-summary.txt"
+model "snappy laminar simplec" "$fake/mesh/mesh-summary.txt"   # older than the boundary-layer mesh
 help_out=$work/help-run
 rm -rf "$help_out"
 if ! "$FSI_ROOT/scripts/run" "$FSI_ROOT/cases/hydrofoil" --preset medium --out "$help_out" --help \
