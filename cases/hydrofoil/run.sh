@@ -238,6 +238,9 @@ else
 fi
 grep -E "^fluid:|^solid" "$run/mesh/mesh-summary.txt" 2>/dev/null | sed 's/^/  /' || true
 log "model: flow $flow, convection $scheme, pressure-velocity ${algorithm:-simplec}, fluid mesh $fluidMesh"
+if [ "$fluidMesh" = cgrid ] && [ "$preset" != coarse ]; then
+  log "note: on the $preset boundary-layer mesh the coupled solves converge slowly (a viscoelastic history takes hours; README, \"The case default\"); --fluid-mesh snappy runs the paper's setup"
+fi
 solidMesh=$run/mesh/solid/foil-tet10.msh
 [ -f "$solidMesh" ] || die "no structural mesh $solidMesh"
 
