@@ -214,7 +214,7 @@ TEST(CouplingParameters, MappingSmoothingRadiusIsOptionalAndValidated)
                                     "  acceleration: {type: aitken, aitken: {initial_relaxation: "
                                     "0.5}}\n"
                                     "  mapping: {type: nearest-neighbour, smoothing_radius: -1}\n");
-    EXPECT_NE(bad.find("mapping.smoothing_radius"), std::string::npos) << bad;
+    EXPECT_NE(bad.find("'coupling.mapping.smoothing_radius'"), std::string::npos) << bad;
     EXPECT_EQ(bad.find('\n'), std::string::npos) << bad;
 }
 

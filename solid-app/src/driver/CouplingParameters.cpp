@@ -24,19 +24,25 @@ void onlySelectedCoefficients(const config::Block& b, const std::string& type,
                           "': remove the block or change type");
 }
 
-// Runs the strategy's own validate(); its message is re-thrown as a one-line error naming the
-// config file and `key` of block b.
-template <class Parameters>
-void validateIn(const Parameters& p, const config::Block& b, const std::string& key)
+// Runs check(); the message of a std::exception it throws is re-thrown as a one-line error naming
+// the config file and `key` of block b.
+template <class Check> void failUnder(const config::Block& b, const std::string& key, Check&& check)
 {
     try
     {
-        p.validate();
+        check();
     }
     catch (const std::exception& e)
     {
         b.fail(key, e.what());
     }
+}
+
+// Runs the strategy's own validate() under `key` (failUnder).
+template <class Parameters>
+void validateIn(const Parameters& p, const config::Block& b, const std::string& key)
+{
+    failUnder(b, key, [&] { p.validate(); });
 }
 
 // acceleration: {type: NAME, NAME: {coefficients}}; the strategies and their keys come from
@@ -73,10 +79,7 @@ mapping::MappingParameters parseMapping(const config::Block& b)
     mapping::MappingParameters p = mapping::mappingType(type).parse(b);
     p.overlapTolerance = b.number("overlap_tolerance", p.overlapTolerance);
     p.smoothingRadius = b.number("smoothing_radius", p.smoothingRadius);
-    if (!(p.smoothingRadius >= 0.0))
-        b.fail("smoothing_radius", "must be >= 0 m (0 = off; e.g. 2e-4, a few fluid wall "
-                                   "spacings), got " +
-                                       config::formatNumber(p.smoothingRadius));
+    failUnder(b, "smoothing_radius", [&] { p.validateSmoothingRadius(); });
     // a coefficient error is named under the strategy's own block, e.g.
     // coupling.mapping.rbf-wendland-c2 (the block holds the offending key)
     validateIn(p, b, b.has(type) ? type : std::string("type"));

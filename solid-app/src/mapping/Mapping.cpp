@@ -18,10 +18,20 @@ MappingParameters::MappingParameters() : strategy(NearestNeighbourParameters{}) 
 void MappingParameters::validate() const
 {
     strategy.validate();
+    validateOverlapTolerance();
+    validateSmoothingRadius();
+}
+
+void MappingParameters::validateOverlapTolerance() const
+{
     if (!(overlapTolerance > 0.0) || !std::isfinite(overlapTolerance))
         throw std::runtime_error("mapping.overlap_tolerance must be > 0 (relative to the "
                                  "interface size; e.g. 0.1), got " +
                                  config::formatNumber(overlapTolerance));
+}
+
+void MappingParameters::validateSmoothingRadius() const
+{
     if (!(smoothingRadius >= 0.0) || !std::isfinite(smoothingRadius))
         throw std::runtime_error("mapping.smoothing_radius must be >= 0 m (0 = off; e.g. 2e-4, "
                                  "a few fluid wall spacings), got " +

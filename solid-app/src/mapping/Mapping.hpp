@@ -109,8 +109,12 @@ struct MappingParameters
     double smoothingRadius = 0.0;
 
     const std::string& type() const { return strategy.type(); }
-    // Throws std::runtime_error, one line naming the key (mapping.<key>) and the fix.
+    // Throws std::runtime_error, one line naming the key (mapping.<key>) and the fix: the
+    // strategy's coefficients, then the two checks below (a config parser calls those two on
+    // their own, to name the key it read).
     void validate() const;
+    void validateOverlapTolerance() const;
+    void validateSmoothingRadius() const;
 };
 
 // Strategy object for params.type (validated), not yet computed.
