@@ -218,6 +218,18 @@ TEST(CouplingParameters, MappingSmoothingRadiusIsOptionalAndValidated)
     EXPECT_EQ(bad.find('\n'), std::string::npos) << bad;
 }
 
+// mapping.overlap_tolerance out of range is named under its own key (it used to be reported
+// under coupling.mapping.type).
+TEST(CouplingParameters, MappingOverlapToleranceIsNamedUnderItsKey)
+{
+    const std::string bad = errorOf("  convergence: {absolute_tolerance: 1.0e-7}\n"
+                                    "  acceleration: {type: aitken, aitken: {initial_relaxation: "
+                                    "0.5}}\n"
+                                    "  mapping: {type: nearest-neighbour, overlap_tolerance: 0}\n");
+    EXPECT_NE(bad.find("'coupling.mapping.overlap_tolerance'"), std::string::npos) << bad;
+    EXPECT_EQ(bad.find('\n'), std::string::npos) << bad;
+}
+
 // Issue 15: a bad RBF coefficient is named under its own block with its value in %g, and the
 // launch timeout is capped (1e10 s overflowed the comm layer's clock).
 TEST(CouplingParameters, StrategyErrorsNameTheirBlockAndKeepSmallValues)

@@ -78,6 +78,7 @@ mapping::MappingParameters parseMapping(const config::Block& b)
     onlySelectedCoefficients(b, type, types);
     mapping::MappingParameters p = mapping::mappingType(type).parse(b);
     p.overlapTolerance = b.number("overlap_tolerance", p.overlapTolerance);
+    failUnder(b, "overlap_tolerance", [&] { p.validateOverlapTolerance(); });
     p.smoothingRadius = b.number("smoothing_radius", p.smoothingRadius);
     failUnder(b, "smoothing_radius", [&] { p.validateSmoothingRadius(); });
     // a coefficient error is named under the strategy's own block, e.g.
