@@ -58,7 +58,7 @@ HEIGHT = 0.114    # tunnel height (m): wall z = H, tip gap 14 mm
 # ones close in on the tip plane, spacing under dz_blend); next to the tip plane (on both sides)
 # the cells are y1 thick, growing by growth_gap; the size at the wall z = H is dz_top; largest
 # size in the gap dz_max_gap. Above the tip the plane's nodes within gap_relax_length of the foil
-# re-space evenly within h_relax.
+# re-space, growing by growth_relax from the foil, within h_relax.
 # Next to the tip plane: first cell y1_tip over the tip, and, within h_thin below it, the
 # sides' first cell thinned by tip_thinning (nodes within thin_length of the wall): without,
 # y+ reached 1.96 at the tip's leading-edge corner (SST, coarse; 0.76 elsewhere on the sides).
@@ -66,7 +66,7 @@ RATIO = 1.3
 COARSE = dict(n_side=40, n_te=4, n_wake=16, n_normal=36, y1=5.0e-6,
               dz_root=2.0e-3, dz_blend=2.0e-3, growth_span=1.25, dz_max=4.5e-3,
               dz_top=1.0e-3, growth_gap=1.4, dz_max_gap=2.5e-3,
-              gap_relax_length=1.5e-3, h_relax=1.0e-3,
+              gap_relax_length=1.5e-3, h_relax=1.0e-3, growth_relax=1.1,
               y1_tip=3.5e-6, tip_thinning=0.35, thin_length=1.5e-3, h_thin=2.0e-3)
 LEVELS = {"coarse": 0, "medium": 1, "fine": 2}
 
@@ -99,7 +99,13 @@ def parseArgs(argv):
     p.add_argument("--te", default="sharp", choices=["sharp", "blunt"],
                    help="trailing edge of the fluid's foil: sharp (closed; default, the steady "
                         "model of the 2-D study) or blunt (the section's 0.4 mm face)")
-    return p.parse_args(argv)
+    p.add_argument("--growth-relax", type=float, default=None,
+                   help="diagnostic: growth of the re-spaced cells above the tip (default: the "
+                        "preset's growth_relax, 1.1 on coarse)")
+    a = p.parse_args(argv)
+    if a.growth_relax is not None and not 1.0 <= a.growth_relax <= 2.0:
+        p.error("--growth-relax %g: must be in [1, 2]" % a.growth_relax)
+    return a
 
 
 def stations(a, b, ha, hb, ga, gb, hmax):
@@ -205,8 +211,10 @@ def signedArea(pts, cells):
                         - np.roll(p[:, :, 0], -1, axis=1) * p[:, :, 1], axis=1)
 
 
-def build(name, tc, cli, meanline, te, workdir, fullSpan=False):
+def build(name, tc, cli, meanline, te, workdir, fullSpan=False, growthRelax=None):
     c = preset(name)
+    if growthRelax is not None:
+        c["growth_relax"] = growthRelax
     g = mesh2d.build(0, tc, cli, meanline, te, counts=c)  # mesh2d's TE_SPACING, OUTER_BLEND
     xy, quads, edges, _ = mesh2d.quads(g)
     loop = foilLoop(edges["foil"])
@@ -263,7 +271,7 @@ def planeNodesAt(g, xy, extra, z, kTip, c):
     # plane (scaledPlane), which carries the thinned nodes.
     xyThin, ptsThin = scaledPlane(g, c["thin_length"],
                                   lambda u: c["tip_thinning"] + (1.0 - c["tip_thinning"]) * u)
-    relax = np.vstack([relaxedPlane(g, c["gap_relax_length"]) - xyThin, np.zeros_like(extra)])
+    relax = np.vstack([relaxedPlane(g, c["gap_relax_length"], c["growth_relax"])[0] - xyThin, np.zeros_like(extra)])
     thin = xyThin - xy
     if not np.any(relax) or not np.any(thin):
         sys.exit("cgrid3d: no plane node moves next to the tip (relax/thin lengths too short?)")
@@ -283,16 +291,25 @@ def planeNodesAt(g, xy, extra, z, kTip, c):
     return xyAt, ptsThin
 
 
-def relaxedPlane(g, length, growth=1.1):
-    """The plane's nodes (mesh2d.quads numbering) with every foil grid line's nodes within
-    `length` of the foil re-spaced: the same count J of cells over the same distance s_J,
-    growing by `growth` (first cell s_J (g - 1)/(g^J - 1): about 37 um instead of 5 um on
-    coarse, and 0.17 mm at s_J against the next clustered cell's 0.4 mm). Nodes never come
-    closer to the wall than before. The lines are straight there (mesh2d: the first 10 % of
-    the chord), so the nodes move along them."""
+def relaxedPlane(g, length, growth):
+    """(xy, pts): the plane's nodes (mesh2d.quads numbering) and grid-line points with every
+    foil grid line's nodes within `length` of the foil re-spaced: the same count J of cells
+    over the same distance s_J, growing by `growth` (1: even; first cell s_J (g - 1)/(g^J - 1):
+    about 37 um instead of 5 um on coarse, and 0.17 mm at s_J against the next clustered cell's
+    0.4 mm). Nodes never come closer to the wall than before. The lines are straight there
+    (mesh2d: the first 10 % of the chord), so the nodes move along them. `growth` is the
+    preset's growth_relax, refined like every growth rate: with a fixed 1.1 the first cell
+    shrank faster than the refinement (J grows while s_J shrinks: 38 / 19 / 9 um on coarse /
+    medium / fine, against 1.3 and 1.7 mm triangles beside them), and on medium SIMPLEC
+    oscillated in those cells (the tip gap's aft suction side, +-15 m/s from iteration 20 on)
+    until the solve diverged; scaled (1.1 / 1.077 / 1.059) they are 38 / 25 / 18 um and the
+    medium solve converges (cases/hydrofoil/README.md, "The tip gap's re-spaced cells")."""
     def respace(s, J):
-        return np.maximum(s[J] * (growth ** np.arange(J + 1) - 1.0) / (growth ** J - 1.0), s[:J + 1])
-    return movedAlongLines(g, length, respace)[0]
+        k = np.arange(J + 1)
+        if growth == 1.0:
+            return np.maximum(s[J] * k / J, s[:J + 1])
+        return np.maximum(s[J] * (growth ** k - 1.0) / (growth ** J - 1.0), s[:J + 1])
+    return movedAlongLines(g, length, respace)
 
 
 def scaledPlane(g, length, factor):
@@ -447,7 +464,7 @@ def main(argv=None):
     a = parseArgs(argv)
     os.makedirs(a.out, exist_ok=True)
     with tempfile.TemporaryDirectory() as work:
-        m = build(a.preset, a.tc, a.cli, a.meanline, a.te, work, a.full_span)
+        m = build(a.preset, a.tc, a.cli, a.meanline, a.te, work, a.full_span, a.growth_relax)
     nCells, nPoints, nFoil = writeMsh(os.path.join(a.out, "cgrid3d.msh"), m)
     c, kTip = m["c"], m["kTip"]
     z = m["z"][m["tri"][0, 0] if len(m["tri"]) else 0]   # a node of the section: the tip's stations

@@ -3,7 +3,8 @@
 """cases/hydrofoil/tools/cgrid3d.py: the Gmsh triangulation of the section above the tip
 shares every boundary node with the C-grid around it, on every preset (a node matched by
 rounded coordinates once split a pair on the fine preset: 152 unnamed faces), and fills the
-foil polygon exactly (areas equal to round-off)."""
+foil polygon exactly (areas equal to round-off); above the tip the re-spaced first cells beside
+the triangles refine with the preset (relaxedPlane)."""
 import os
 import sys
 import tempfile
@@ -38,6 +39,40 @@ class CgridSectionTest(unittest.TestCase):
             self.assertTrue(np.all(a > 0) or np.all(a < 0), name)
             poly = abs(naca66a08.polygonArea(p))
             self.assertAlmostEqual(abs(a.sum()), poly, delta=1e-9 * poly, msg=name)
+
+    def test_gap_cells_beside_the_triangles_refine_with_the_preset(self):
+        # Above the tip, the first re-spaced cell of each foil grid line sits beside a triangle
+        # as wide as the foil's boundary spacing there. Under systematic refinement the two
+        # shrink together; their ratio must stay within 30 % of coarse's (with the preset's
+        # growth_relax: 0.86 and 0.75 of it on medium and fine, the line count J growing a little
+        # faster than the refinement; with a fixed growth 1.1 it fell to 0.65 and 0.41, and
+        # SIMPLEC oscillated in those cells on medium).
+        ratio = {}
+        for name in ("coarse", "medium", "fine"):
+            c = cgrid3d.preset(name)
+            g = mesh2d.build(0, 0.12, 0.5, "a08", "sharp", counts=c)
+            _, pts = cgrid3d.relaxedPlane(g, c["gap_relax_length"], c["growth_relax"])
+            lines = range(g["iA"], g["iB"])
+            first = np.array([np.hypot(*(pts[i, 1] - pts[i, 0])) for i in lines])
+            along = np.array([np.hypot(*(pts[i + 1, 0] - pts[i, 0])) for i in lines])
+            ratio[name] = float(np.median(first / along))
+            # the re-spaced lines stay ordered: every cell of the first 20 has a positive width
+            for i in lines:
+                s = np.hypot(*(pts[i, :21] - pts[i, 0]).T)
+                self.assertTrue(np.all(np.diff(s) > 0), (name, i))
+        for name in ("medium", "fine"):
+            self.assertGreater(ratio[name], 0.7 * ratio["coarse"], (name, ratio))
+
+    def test_even_respacing(self):
+        # growth 1: the re-spaced nodes of a foil line are evenly spaced up to s_J
+        c = cgrid3d.preset("coarse")
+        g = mesh2d.build(0, 0.12, 0.5, "a08", "sharp", counts=c)
+        _, pts = cgrid3d.relaxedPlane(g, c["gap_relax_length"], 1.0)
+        i = (g["iA"] + g["iB"]) // 2
+        s0 = np.hypot(*(g["pts"][i] - g["pts"][i, 0]).T)
+        J = int(np.searchsorted(s0, c["gap_relax_length"]))
+        s = np.hypot(*(pts[i, :J + 1] - pts[i, 0]).T)
+        np.testing.assert_allclose(np.diff(s), s0[J] / J, rtol=1e-9)
 
 
 if __name__ == "__main__":
