@@ -58,7 +58,7 @@ HEIGHT = 0.114    # tunnel height (m): wall z = H, tip gap 14 mm
 # ones close in on the tip plane, spacing under dz_blend); next to the tip plane (on both sides)
 # the cells are y1 thick, growing by growth_gap; the size at the wall z = H is dz_top; largest
 # size in the gap dz_max_gap. Above the tip the plane's nodes within gap_relax_length of the foil
-# re-space, growing by growth_relax from the foil, within h_relax.
+# re-space within h_relax, growing by growth_relax from the foil (1: even; see relaxedPlane).
 # Next to the tip plane: first cell y1_tip over the tip, and, within h_thin below it, the
 # sides' first cell thinned by tip_thinning (nodes within thin_length of the wall): without,
 # y+ reached 1.96 at the tip's leading-edge corner (SST, coarse; 0.76 elsewhere on the sides).
@@ -66,7 +66,7 @@ RATIO = 1.3
 COARSE = dict(n_side=40, n_te=4, n_wake=16, n_normal=36, y1=5.0e-6,
               dz_root=2.0e-3, dz_blend=2.0e-3, growth_span=1.25, dz_max=4.5e-3,
               dz_top=1.0e-3, growth_gap=1.4, dz_max_gap=2.5e-3,
-              gap_relax_length=1.5e-3, h_relax=1.0e-3, growth_relax=1.1,
+              gap_relax_length=1.5e-3, h_relax=1.0e-3, growth_relax=1.0,
               y1_tip=3.5e-6, tip_thinning=0.35, thin_length=1.5e-3, h_thin=2.0e-3)
 LEVELS = {"coarse": 0, "medium": 1, "fine": 2}
 
@@ -101,7 +101,7 @@ def parseArgs(argv):
                         "model of the 2-D study) or blunt (the section's 0.4 mm face)")
     p.add_argument("--growth-relax", type=float, default=None,
                    help="diagnostic: growth of the re-spaced cells above the tip (default: the "
-                        "preset's growth_relax, 1.1 on coarse)")
+                        "preset's growth_relax, 1: even)")
     a = p.parse_args(argv)
     if a.growth_relax is not None and not 1.0 <= a.growth_relax <= 2.0:
         p.error("--growth-relax %g: must be in [1, 2]" % a.growth_relax)
@@ -294,16 +294,16 @@ def planeNodesAt(g, xy, extra, z, kTip, c):
 def relaxedPlane(g, length, growth):
     """(xy, pts): the plane's nodes (mesh2d.quads numbering) and grid-line points with every
     foil grid line's nodes within `length` of the foil re-spaced: the same count J of cells
-    over the same distance s_J, growing by `growth` (1: even; first cell s_J (g - 1)/(g^J - 1):
-    about 37 um instead of 5 um on coarse, and 0.17 mm at s_J against the next clustered cell's
-    0.4 mm). Nodes never come closer to the wall than before. The lines are straight there
-    (mesh2d: the first 10 % of the chord), so the nodes move along them. `growth` is the
-    preset's growth_relax, refined like every growth rate: with a fixed 1.1 the first cell
-    shrank faster than the refinement (J grows while s_J shrinks: 38 / 19 / 9 um on coarse /
-    medium / fine, against 1.3 and 1.7 mm triangles beside them), and on medium SIMPLEC
-    oscillated in those cells (the tip gap's aft suction side, +-15 m/s from iteration 20 on)
-    until the solve diverged; scaled (1.1 / 1.077 / 1.059) they are 38 / 25 / 18 um and the
-    medium solve converges (cases/hydrofoil/README.md, "The tip gap's re-spaced cells")."""
+    over the same distance s_J, growing by `growth` (the preset's growth_relax, 1: even) from
+    the foil. Nodes never come closer to the wall than before. The lines are straight there
+    (mesh2d: the first 10 % of the chord), so the nodes move along them.
+    The first re-spaced cell sits beside the section's triangles (as wide as the foil's
+    boundary spacing); that size jump decides whether SIMPLEC converges in the tip gap. Growing
+    by 1.1 (the presets until 2026-12-05) the first cell was 38 / 19 / 9 um on coarse / medium /
+    fine (jumps 35 / 53 / 87:1: J grows while s_J shrinks), and SIMPLEC oscillated in those
+    cells on medium and fine (the aft suction side, +-15 m/s) until the solve diverged or
+    stalled; even (1) they are 92 / 59 / 39 um (15 / 17 / 21:1) and all three converge
+    (cases/hydrofoil/README.md, "The tip gap's re-spaced cells")."""
     def respace(s, J):
         k = np.arange(J + 1)
         if growth == 1.0:
@@ -473,14 +473,21 @@ def main(argv=None):
     side = np.hypot(*(pts[iA:iB + 1, 1] - pts[iA:iB + 1, 0]).T)
     ptsTip = m["ptsTip"][iA:iB + 1]     # the plane at the tip (first cells thinned in front)
     sideTip = np.hypot(*(ptsTip[:, 1] - ptsTip[:, 0]).T)
+    # above the tip: the first re-spaced cell of the foil's lines against the boundary spacing
+    gapJump = float("nan")
+    if not a.full_span:
+        ptsGap = relaxedPlane(m["g"], c["gap_relax_length"], c["growth_relax"])[1]
+        first = np.hypot(*(ptsGap[iA:iB, 1] - ptsGap[iA:iB, 0]).T)
+        along = np.hypot(*(ptsGap[iA + 1:iB + 1, 0] - ptsGap[iA:iB, 0]).T)
+        gapJump = float(np.median(along / first))
     summary = ("preset=%s te=%s cells=%d points=%d foil_faces=%d plane_cells=%d section_triangles=%d "
                "span_cells=%d below_tip=%d above_tip=%d first_cell_sides_m=%.3e..%.3e "
                "first_cell_sides_at_tip_m=%.3e..%.3e first_cell_tip_m=%.3e n_side=%d n_wake=%d "
-               "n_normal=%d"
+               "n_normal=%d growth_relax=%g gap_size_jump=%.1f"
                % (a.preset, a.te, nCells, nPoints, nFoil, len(m["quads"]), len(m["tri"]),
                   len(z) - 1, kTip, len(z) - 1 - kTip, side.min(), side.max(), sideTip.min(),
                   sideTip.max(), (z[kTip + 1] - z[kTip]) if kTip + 1 < len(z) else float("nan"),
-                  c["n_side"], c["n_wake"], c["n_normal"]))
+                  c["n_side"], c["n_wake"], c["n_normal"], c["growth_relax"], gapJump))
     with open(os.path.join(a.out, "cgrid3d-mesh.txt"), "w") as f:
         f.write(summary + "\n")
     print(summary)

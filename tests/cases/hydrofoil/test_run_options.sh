@@ -63,12 +63,14 @@ model() {   # model EXPECTED ARGS...
   if [ "$got" = "$1" ]; then echo "ok: meshModel.sh ${*:2} -> $got"; else echo "FAIL: meshModel.sh ${*:2}: '$got', expected '$1'"; fail=1; fi
 }
 model "cgrid turbulent simplec" cgrid coarse
-model "cgrid turbulent simple" cgrid medium
-model "cgrid turbulent simple" cgrid fine
+model "cgrid turbulent simplec" cgrid medium
+model "cgrid turbulent simplec" cgrid fine
 model "snappy laminar simplec" snappy coarse
 model "snappy laminar simplec" "$fake/mesh/mesh-summary.txt"
 echo "hydrofoil meshes (2026-12-05T00:00:00Z): preset=medium tc=0.12 cli=0.5 meanline=a08 fluid-mesh=cgrid" > "$fake/mesh/mesh-summary.txt"
-model "cgrid turbulent simple" "$fake/mesh/mesh-summary.txt"
+model "cgrid turbulent simple" "$fake/mesh/mesh-summary.txt"   # made before the even gap cells
+echo "preset=medium te=sharp cells=595390 n_normal=47 growth_relax=1 gap_size_jump=17.1" >> "$fake/mesh/mesh-summary.txt"
+model "cgrid turbulent simplec" "$fake/mesh/mesh-summary.txt"
 echo "hydrofoil meshes (2026-11-20T00:00:00Z): preset=coarse tc=0.12 cli=0.5" > "$fake/mesh/mesh-summary.txt"
 model "snappy laminar simplec" "$fake/mesh/mesh-summary.txt"   # older than the boundary-layer mesh
 help_out=$work/help-run
