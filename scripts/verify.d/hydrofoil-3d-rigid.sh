@@ -22,10 +22,10 @@
 #   H3D_FLOW      flow model (default turbulent: k-omega SST; see the README's flow models)
 #   H3D_SCHEME    convection scheme (default upwind: the second-order schemes have no steady
 #                 state at the root junction on this mesh, README "Rigid 3-D solve")
-#   H3D_ALGORITHM pressure-velocity algorithm (default simple: classic SIMPLE, blcheck.sh
-#                 --algorithm; "simplec": the case's SIMPLEC, which has no steady state on the
-#                 medium cgrid mesh and diverges from a converged coarse start, README "Mesh
-#                 study of the rigid foil on the cgrid presets")
+#   H3D_ALGORITHM pressure-velocity algorithm (default simplec: the case's SIMPLEC, which has a
+#                 steady state on every preset since the tip gap's cells re-space evenly,
+#                 README "The tip gap's re-spaced cells"; simple: classic SIMPLE, blcheck.sh
+#                 --algorithm, the study of 2026-12-03/04 on the older meshes)
 #   H3D_BAND      blcheck.sh --band-tolerance (default 1e-3): a level may also stop in the mean
 #                 (force within +-1e-3 |F| over 200 iterations, the two 100-iteration blocks'
 #                 means within the 1e-5 tolerance): classic SIMPLE's force keeps wandering once
@@ -47,7 +47,7 @@ levels=${H3D_LEVELS:-"coarse medium fine"}
 flow=${H3D_FLOW:-turbulent}
 scheme=${H3D_SCHEME:-upwind}
 runs=${H3D_RUNS:-$FSI_VERIFY_DIR/runs}
-algorithm=${H3D_ALGORITHM:-simple}
+algorithm=${H3D_ALGORITHM:-simplec}
 case "$algorithm" in simple|simplec) ;; *) echo "error: hydrofoil-3d-rigid: H3D_ALGORITHM='$algorithm' must be simple or simplec" >&2; exit 2 ;; esac
 reuse=${H3D_REUSE:-0}
 band=${H3D_BAND:-1e-3}

@@ -66,7 +66,7 @@ RATIO = 1.3
 COARSE = dict(n_side=40, n_te=4, n_wake=16, n_normal=36, y1=5.0e-6,
               dz_root=2.0e-3, dz_blend=2.0e-3, growth_span=1.25, dz_max=4.5e-3,
               dz_top=1.0e-3, growth_gap=1.4, dz_max_gap=2.5e-3,
-              gap_relax_length=1.5e-3, h_relax=1.0e-3, growth_relax=1.0,
+              gap_relax_length=1.5e-3, h_relax=1.0e-3, growth_relax=1.0, growth_relax_wake=1.1,
               y1_tip=3.5e-6, tip_thinning=0.35, thin_length=1.5e-3, h_thin=2.0e-3)
 LEVELS = {"coarse": 0, "medium": 1, "fine": 2}
 
@@ -80,7 +80,7 @@ def preset(name):
             c[key] = v
         elif key.startswith("n_"):
             c[key] = int(round(v * r))
-        elif key.startswith("growth"):
+        elif key.startswith("growth"):   # 1 + (g - 1)/r: even (1) stays even
             c[key] = 1.0 + (v - 1.0) / r
         else:
             c[key] = v / r
@@ -271,7 +271,8 @@ def planeNodesAt(g, xy, extra, z, kTip, c):
     # plane (scaledPlane), which carries the thinned nodes.
     xyThin, ptsThin = scaledPlane(g, c["thin_length"],
                                   lambda u: c["tip_thinning"] + (1.0 - c["tip_thinning"]) * u)
-    relax = np.vstack([relaxedPlane(g, c["gap_relax_length"], c["growth_relax"])[0] - xyThin, np.zeros_like(extra)])
+    relax = np.vstack([relaxedPlane(g, c["gap_relax_length"], c["growth_relax"],
+                                    c["growth_relax_wake"])[0] - xyThin, np.zeros_like(extra)])
     thin = xyThin - xy
     if not np.any(relax) or not np.any(thin):
         sys.exit("cgrid3d: no plane node moves next to the tip (relax/thin lengths too short?)")
@@ -291,7 +292,7 @@ def planeNodesAt(g, xy, extra, z, kTip, c):
     return xyAt, ptsThin
 
 
-def relaxedPlane(g, length, growth):
+def relaxedPlane(g, length, growth, growthWake):
     """(xy, pts): the plane's nodes (mesh2d.quads numbering) and grid-line points with every
     foil grid line's nodes within `length` of the foil re-spaced: the same count J of cells
     over the same distance s_J, growing by `growth` (the preset's growth_relax, 1: even) from
@@ -303,12 +304,15 @@ def relaxedPlane(g, length, growth):
     fine (jumps 35 / 53 / 87:1: J grows while s_J shrinks), and SIMPLEC oscillated in those
     cells on medium and fine (the aft suction side, +-15 m/s) until the solve diverged or
     stalled; even (1) they are 92 / 59 / 39 um (15 / 17 / 21:1) and all three converge
-    (cases/hydrofoil/README.md, "The tip gap's re-spaced cells")."""
-    def respace(s, J):
+    (cases/hydrofoil/README.md, "The tip gap's re-spaced cells"). The wake cut's lines border
+    no triangle and keep growing (`growthWake`, the preset's growth_relax_wake): re-spaced
+    evenly they tilted the cells where their move tapers off to 72 deg on coarse."""
+    def respace(s, J, onFoil):
         k = np.arange(J + 1)
-        if growth == 1.0:
+        g = growth if onFoil else growthWake
+        if g == 1.0:
             return np.maximum(s[J] * k / J, s[:J + 1])
-        return np.maximum(s[J] * (growth ** k - 1.0) / (growth ** J - 1.0), s[:J + 1])
+        return np.maximum(s[J] * (g ** k - 1.0) / (g ** J - 1.0), s[:J + 1])
     return movedAlongLines(g, length, respace)
 
 
@@ -318,7 +322,7 @@ def scaledPlane(g, length, factor):
     monotone for an increasing factor). Only the front half of the foil (movedAlongLines
     foilOnly): y+ exceeded 1 only at the tip's leading-edge corner, and thinned cells at the
     sharp trailing edge's tip corner reached 86 deg of non-orthogonality at -12 deg / 30 mm."""
-    def rescale(s, J):
+    def rescale(s, J, onFoil):
         u = np.clip(s[:J + 1] / length, 0.0, 1.0)
         return s[:J + 1] * factor(u * u * (3.0 - 2.0 * u))
     return movedAlongLines(g, length, rescale, foilOnly=True)
@@ -326,7 +330,7 @@ def scaledPlane(g, length, factor):
 
 def movedAlongLines(g, length, newDistances, foilOnly=False, taper=0.025):
     """The plane's nodes (mesh2d.quads numbering) with the nodes of the grid lines within
-    `length` of the foil or wake cut moved along their line towards newDistances(s, J) (s:
+    `length` of the foil or wake cut moved along their line towards newDistances(s, J, onFoil) (s:
     the line's node distances from its wall node, J: the first node at least `length` away).
     Weight of the move: 1 on the foil's lines; on the wake cut's lines falling linearly to 0 at
     `taper` (m) behind the trailing edge (moving the wake's long cells tilted them to 71 deg;
@@ -346,7 +350,7 @@ def movedAlongLines(g, length, newDistances, foilOnly=False, taper=0.025):
         J = int(np.searchsorted(s, length))
         if weight == 0.0 or J < 3 or J >= len(s) - 1:
             continue
-        sNew = s[:J + 1] + weight * (newDistances(s, J) - s[:J + 1])
+        sNew = s[:J + 1] + weight * (newDistances(s, J, onFoil) - s[:J + 1])
         pts[i, 1:J] = pts[i, 0] + (pts[i, 1:J] - pts[i, 0]) * (sNew[1:J] / s[1:J])[:, None]
     xy, _, _, _ = mesh2d.quads(dict(g, pts=pts))
     return xy, pts
@@ -476,7 +480,8 @@ def main(argv=None):
     # above the tip: the first re-spaced cell of the foil's lines against the boundary spacing
     gapJump = float("nan")
     if not a.full_span:
-        ptsGap = relaxedPlane(m["g"], c["gap_relax_length"], c["growth_relax"])[1]
+        ptsGap = relaxedPlane(m["g"], c["gap_relax_length"], c["growth_relax"],
+                              c["growth_relax_wake"])[1]
         first = np.hypot(*(ptsGap[iA:iB, 1] - ptsGap[iA:iB, 0]).T)
         along = np.hypot(*(ptsGap[iA + 1:iB + 1, 0] - ptsGap[iA:iB, 0]).T)
         gapJump = float(np.median(along / first))

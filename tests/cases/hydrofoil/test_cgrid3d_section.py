@@ -52,7 +52,8 @@ class CgridSectionTest(unittest.TestCase):
         for name in ("coarse", "medium", "fine"):
             c = cgrid3d.preset(name)
             g = mesh2d.build(0, 0.12, 0.5, "a08", "sharp", counts=c)
-            _, pts = cgrid3d.relaxedPlane(g, c["gap_relax_length"], c["growth_relax"])
+            _, pts = cgrid3d.relaxedPlane(g, c["gap_relax_length"], c["growth_relax"],
+                                          c["growth_relax_wake"])
             lines = range(g["iA"], g["iB"])
             first = np.array([np.hypot(*(pts[i, 1] - pts[i, 0])) for i in lines])
             along = np.array([np.hypot(*(pts[i + 1, 0] - pts[i, 0])) for i in lines])
@@ -68,7 +69,7 @@ class CgridSectionTest(unittest.TestCase):
         # growth 1: the re-spaced nodes of a foil line are evenly spaced up to s_J
         c = cgrid3d.preset("coarse")
         g = mesh2d.build(0, 0.12, 0.5, "a08", "sharp", counts=c)
-        _, pts = cgrid3d.relaxedPlane(g, c["gap_relax_length"], 1.0)
+        _, pts = cgrid3d.relaxedPlane(g, c["gap_relax_length"], 1.0, 1.0)
         i = (g["iA"] + g["iB"]) // 2
         s0 = np.hypot(*(g["pts"][i] - g["pts"][i, 0]).T)
         J = int(np.searchsorted(s0, c["gap_relax_length"]))
