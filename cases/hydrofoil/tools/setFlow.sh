@@ -3,7 +3,7 @@
 # Select the flow model and the convection scheme of an OpenFOAM copy of the hydrofoil case.
 #
 #   cases/hydrofoil/tools/setFlow.sh CASE [--flow laminar|transition|turbulent]
-#                                         [--scheme upwind|linearUpwind] [--algorithm simple]
+#                                         [--scheme upwind|linearUpwind] [--algorithm simple|simplec]
 #
 #   --flow laminar      the paper's model (default)
 #          transition   Langtry-Menter kOmegaSSTLM (needs first-cell y+ <= 1)
@@ -13,9 +13,10 @@
 #                          turbulence fields)
 #   --algorithm simple     classic SIMPLE (consistent no; relaxation p 0.3, U 0.7, turbulence
 #                          0.7) instead of the case's SIMPLEC (consistent yes; p 1, U 0.9,
-#                          turbulence 0.8; left as it is when the option is not given). SIMPLEC
-#                          is the faster one where it is stable; on the medium cgrid mesh it is
-#                          not (README "Rigid 3-D solve": a growing two-iteration oscillation)
+#                          turbulence 0.8; left as it is when the option is not given or is
+#                          simplec). SIMPLEC is the faster one where it is stable; on the older
+#                          medium and fine cgrid meshes it is not (README "The tip gap's
+#                          re-spaced cells": a growing two-iteration oscillation in the tip gap)
 #
 # Copies fluid/flow/<flow> to CASE/constant/turbulenceProperties and sets divSchemes of
 # CASE/system/fvSchemes. The fields of every model are in fluid/0.orig (k, omega, nut,
@@ -36,7 +37,7 @@ while [ $# -gt 0 ]; do
         *) die "unknown option '$1' (use --flow, --scheme, --algorithm)" ;;
     esac
 done
-case "$algorithm" in ""|simple) ;; *) die "--algorithm '$algorithm' unknown; use simple (or leave it out for the case's SIMPLEC)" ;; esac
+case "$algorithm" in ""|simple|simplec) ;; *) die "--algorithm '$algorithm' unknown; use simple or simplec (the case's, also when left out)" ;; esac
 [ -f "$here/fluid/flow/$flow" ] || die "--flow '$flow' unknown; use laminar, transition or turbulent"
 case "$scheme" in upwind|linearUpwind) ;; *) die "--scheme '$scheme' unknown; use upwind or linearUpwind" ;; esac
 [ "$case" != --check-only ] || exit 0
