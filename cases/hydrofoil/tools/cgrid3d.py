@@ -100,8 +100,8 @@ def parseArgs(argv):
                    help="trailing edge of the fluid's foil: sharp (closed; default, the steady "
                         "model of the 2-D study) or blunt (the section's 0.4 mm face)")
     p.add_argument("--growth-relax", type=float, default=None,
-                   help="diagnostic: growth of the re-spaced cells above the tip (default: the "
-                        "preset's growth_relax, 1: even)")
+                   help="diagnostic: growth of the re-spaced cells of the foil's grid lines above "
+                        "the tip (default: the preset's growth_relax, 1: even)")
     a = p.parse_args(argv)
     if a.growth_relax is not None and not 1.0 <= a.growth_relax <= 2.0:
         p.error("--growth-relax %g: must be in [1, 2]" % a.growth_relax)
@@ -309,10 +309,10 @@ def relaxedPlane(g, length, growth, growthWake):
     evenly they tilted the cells where their move tapers off to 72 deg on coarse."""
     def respace(s, J, onFoil):
         k = np.arange(J + 1)
-        g = growth if onFoil else growthWake
-        if g == 1.0:
+        rate = growth if onFoil else growthWake
+        if rate == 1.0:
             return np.maximum(s[J] * k / J, s[:J + 1])
-        return np.maximum(s[J] * (g ** k - 1.0) / (g ** J - 1.0), s[:J + 1])
+        return np.maximum(s[J] * (rate ** k - 1.0) / (rate ** J - 1.0), s[:J + 1])
     return movedAlongLines(g, length, respace)
 
 
