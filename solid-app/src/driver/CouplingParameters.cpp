@@ -82,8 +82,9 @@ mapping::MappingParameters parseMapping(const config::Block& b)
     p.smoothingRadius = b.number("smoothing_radius", p.smoothingRadius);
     failUnder(b, "smoothing_radius", [&] { p.validateSmoothingRadius(); });
     // a coefficient error is named under the strategy's own block, e.g.
-    // coupling.mapping.rbf-wendland-c2 (the block holds the offending key)
-    validateIn(p, b, b.has(type) ? type : std::string("type"));
+    // coupling.mapping.rbf-wendland-c2 (the block holds the offending key); the two keys above
+    // are checked already
+    validateIn(p.strategy, b, b.has(type) ? type : std::string("type"));
     return p;
 }
 
