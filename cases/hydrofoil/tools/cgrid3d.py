@@ -231,9 +231,11 @@ def build(name, tc, cli, meanline, te, workdir, fullSpan=False, growthRelax=None
         sys.exit("cgrid3d: degenerate triangles in the section")
     tri[area < 0] = tri[area < 0][:, ::-1]
     z, kTip = spanStations(xyAll, quads, tri, loop, c)
-    xyAt, ptsThin = planeNodesAt(g, xy, extra, z, kTip, c)
+    xyRelaxed, ptsRelaxed = relaxedPlane(g, c["gap_relax_length"], c["growth_relax"],
+                                         c["growth_relax_wake"])
+    xyAt, ptsThin = planeNodesAt(g, xy, extra, z, kTip, c, xyRelaxed)
     return dict(xy=xy, xyAll=xyAll, quads=quads, tri=tri, edges=edges, z=z,
-                kTip=kTip, g=g, c=c, xyAt=xyAt, ptsTip=ptsThin)
+                kTip=kTip, g=g, c=c, xyAt=xyAt, ptsTip=ptsThin, ptsRelaxed=ptsRelaxed)
 
 
 def spanStations(xyAll, quads, tri, loop, c):
@@ -259,9 +261,10 @@ def spanStations(xyAll, quads, tri, loop, c):
     return z, kTip
 
 
-def planeNodesAt(g, xy, extra, z, kTip, c):
+def planeNodesAt(g, xy, extra, z, kTip, c, xyRelaxed):
     """xyAt(k): the node positions at station k (the plane's below the tip, the plane's and the
-    section's from the tip plane up), and the plane's grid-line points at the tip plane."""
+    section's from the tip plane up), and the plane's grid-line points at the tip plane.
+    xyRelaxed: the plane re-spaced above the tip (relaxedPlane)."""
     # Above the tip the plane's wall clustering serves no wall: its y1-wide cells next to the
     # section's triangles (0.1-1.7 mm) made a 200:1 size jump, and the solver diverged there
     # (in the gap; the same mesh without a tip, --full-span, converges). So, with height h
@@ -271,8 +274,7 @@ def planeNodesAt(g, xy, extra, z, kTip, c):
     # plane (scaledPlane), which carries the thinned nodes.
     xyThin, ptsThin = scaledPlane(g, c["thin_length"],
                                   lambda u: c["tip_thinning"] + (1.0 - c["tip_thinning"]) * u)
-    relax = np.vstack([relaxedPlane(g, c["gap_relax_length"], c["growth_relax"],
-                                    c["growth_relax_wake"])[0] - xyThin, np.zeros_like(extra)])
+    relax = np.vstack([xyRelaxed - xyThin, np.zeros_like(extra)])
     thin = xyThin - xy
     if not np.any(relax) or not np.any(thin):
         sys.exit("cgrid3d: no plane node moves next to the tip (relax/thin lengths too short?)")
@@ -314,6 +316,16 @@ def relaxedPlane(g, length, growth, growthWake):
             return np.maximum(s[J] * k / J, s[:J + 1])
         return np.maximum(s[J] * (rate ** k - 1.0) / (rate ** J - 1.0), s[:J + 1])
     return movedAlongLines(g, length, respace)
+
+
+def gapSizeJump(g, ptsRelaxed):
+    """Above the tip: the median over the foil's grid lines of the foil's boundary spacing (the
+    width of the section's triangle there) over the line's first re-spaced cell; ptsRelaxed:
+    relaxedPlane's grid-line points."""
+    iA, iB = g["iA"], g["iB"]
+    first = np.hypot(*(ptsRelaxed[iA:iB, 1] - ptsRelaxed[iA:iB, 0]).T)
+    along = np.hypot(*(ptsRelaxed[iA + 1:iB + 1, 0] - ptsRelaxed[iA:iB, 0]).T)
+    return float(np.median(along / first))
 
 
 def scaledPlane(g, length, factor):
@@ -477,14 +489,7 @@ def main(argv=None):
     side = np.hypot(*(pts[iA:iB + 1, 1] - pts[iA:iB + 1, 0]).T)
     ptsTip = m["ptsTip"][iA:iB + 1]     # the plane at the tip (first cells thinned in front)
     sideTip = np.hypot(*(ptsTip[:, 1] - ptsTip[:, 0]).T)
-    # above the tip: the first re-spaced cell of the foil's lines against the boundary spacing
-    gapJump = float("nan")
-    if not a.full_span:
-        ptsGap = relaxedPlane(m["g"], c["gap_relax_length"], c["growth_relax"],
-                              c["growth_relax_wake"])[1]
-        first = np.hypot(*(ptsGap[iA:iB, 1] - ptsGap[iA:iB, 0]).T)
-        along = np.hypot(*(ptsGap[iA + 1:iB + 1, 0] - ptsGap[iA:iB, 0]).T)
-        gapJump = float(np.median(along / first))
+    gapJump = float("nan") if a.full_span else gapSizeJump(m["g"], m["ptsRelaxed"])
     summary = ("preset=%s te=%s cells=%d points=%d foil_faces=%d plane_cells=%d section_triangles=%d "
                "span_cells=%d below_tip=%d above_tip=%d first_cell_sides_m=%.3e..%.3e "
                "first_cell_sides_at_tip_m=%.3e..%.3e first_cell_tip_m=%.3e n_side=%d n_wake=%d "
