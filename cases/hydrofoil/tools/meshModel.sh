@@ -21,12 +21,12 @@ case $# in
   1) [ -f "$1" ] || die "no mesh summary $1 (a mesh.sh output folder's mesh-summary.txt)"
      kind=$(sed -n '1s/.*fluid-mesh=\([a-z]*\).*/\1/p' "$1")
      preset=$(sed -n '1s/.*preset=\([a-z]*\).*/\1/p' "$1")
-     evenGap=$(grep -c 'growth_relax=1 ' "$1" || true) ;;
-  2) kind=$1 preset=$2 evenGap=1 ;;
+     gapFixed=$(grep -c 'growth_relax=' "$1" || true) ;;   # 0: made before the gap fix
+  2) kind=$1 preset=$2 gapFixed=1 ;;
   *) die "usage: meshModel.sh MESH_SUMMARY | meshModel.sh cgrid|snappy PRESET" ;;
 esac
 case "${kind:-snappy}" in
-  cgrid) if [ "$preset" = coarse ] || [ "$evenGap" -gt 0 ]; then echo "cgrid turbulent simplec"
+  cgrid) if [ "$preset" = coarse ] || [ "$gapFixed" -gt 0 ]; then echo "cgrid turbulent simplec"
          else echo "cgrid turbulent simple"; fi ;;
   snappy) echo "snappy laminar simplec" ;;
   *) die "unknown fluid mesh '$kind' (cgrid or snappy)" ;;
