@@ -553,10 +553,10 @@ Foam::fluidSolidCoupling::prescribedTransport(const dictionary& dict)
 {
     fsi::fluid::PrescribedMotion m;
     m.type = dict.get<word>("type");
-    if (m.type != "rotation" && m.type != "bending")
+    if (m.type != "rotation" && m.type != "bending" && m.type != "twist")
     {
         FatalIOErrorInFunction(dict)
-            << "system/fsiDict: prescribed.type must be rotation or bending, got "
+            << "system/fsiDict: prescribed.type must be rotation, bending or twist, got "
             << m.type << exit(FatalIOError);
     }
     toArray(readVector(dict, "origin", Zero), m.origin);
@@ -568,6 +568,18 @@ Foam::fluidSolidCoupling::prescribedTransport(const dictionary& dict)
     m.length = dict.getOrDefault<scalar>("length", 1);
     m.amplitude = dict.getOrDefault<scalar>("amplitude", 0);
     m.steps = dict.getOrDefault<label>("steps", 1);
+    if (m.type != "rotation" && !(m.length > 0))
+    {
+        FatalIOErrorInFunction(dict)
+            << "system/fsiDict: prescribed.length must be > 0 [m] (the beam's normalising"
+            << " length), got " << m.length << exit(FatalIOError);
+    }
+    if (m.steps < 1)
+    {
+        FatalIOErrorInFunction(dict)
+            << "system/fsiDict: prescribed.steps must be >= 1, got " << m.steps
+            << exit(FatalIOError);
+    }
     return fsi::fluid::makePrescribedTransport(m);
 }
 

@@ -10,6 +10,29 @@ namespace fsi
 namespace fluid
 {
 
+namespace
+{
+
+// Displacement R r - r of the point r (relative to a point on the axis) rotated by theta
+// [rad] about the unit axis k (Rodrigues: R r = r c + (k x r) s + k (k.r)(1 - c)).
+void addRotation(const double r[3], const double k[3], double theta, double* d)
+{
+    const double c = std::cos(theta), s = std::sin(theta);
+    const double kr = k[0]*r[0] + k[1]*r[1] + k[2]*r[2];
+    const double kxr[3] =
+    {
+        k[1]*r[2] - k[2]*r[1],
+        k[2]*r[0] - k[0]*r[2],
+        k[0]*r[1] - k[1]*r[0]
+    };
+    for (int j = 0; j < 3; ++j)
+    {
+        d[j] += r[j]*c + kxr[j]*s + k[j]*kr*(1.0 - c) - r[j];
+    }
+}
+
+} // namespace
+
 std::vector<double> prescribedDisplacement
 (
     const PrescribedMotion& m,
@@ -17,53 +40,37 @@ std::vector<double> prescribedDisplacement
     double fraction
 )
 {
+    const double degree = std::acos(-1.0)/180.0;
     const std::size_t n = points.size()/3;
     std::vector<double> d(points.size(), 0.0);
-    if (m.type == "rotation")
+    for (std::size_t i = 0; i < n; ++i)
     {
-        const double pi = std::acos(-1.0);
-        const double theta = fraction*m.angleDeg*pi/180.0;
-        const double c = std::cos(theta), s = std::sin(theta);
-        const double* k = m.axis;
-        for (std::size_t i = 0; i < n; ++i)
+        const double r[3] =
         {
-            const double r[3] =
-            {
-                points[3*i] - m.origin[0],
-                points[3*i + 1] - m.origin[1],
-                points[3*i + 2] - m.origin[2]
-            };
-            const double kr = k[0]*r[0] + k[1]*r[1] + k[2]*r[2];
-            const double kxr[3] =
-            {
-                k[1]*r[2] - k[2]*r[1],
-                k[2]*r[0] - k[0]*r[2],
-                k[0]*r[1] - k[1]*r[0]
-            };
-            // Rodrigues: R r = r c + (k x r) s + k (k.r)(1 - c)
-            for (int j = 0; j < 3; ++j)
-            {
-                d[3*i + j] = r[j]*c + kxr[j]*s + k[j]*kr*(1.0 - c) - r[j];
-            }
+            points[3*i] - m.origin[0],
+            points[3*i + 1] - m.origin[1],
+            points[3*i + 2] - m.origin[2]
+        };
+        double* di = &d[3*i];
+        if (m.type == "rotation")
+        {
+            addRotation(r, m.axis, fraction*m.angleDeg*degree, di);
+            continue;
         }
-    }
-    else if (m.type == "bending")
-    {
-        for (std::size_t i = 0; i < n; ++i)
+        // bending and twist: xi, the position along beamAxis from `start`, per `length`
+        const double x = r[0]*m.beamAxis[0] + r[1]*m.beamAxis[1] + r[2]*m.beamAxis[2];
+        const double xi = (x - m.start)/m.length;
+        if (xi <= 0)
         {
-            double x = 0;
-            for (int j = 0; j < 3; ++j)
-            {
-                x += (points[3*i + j] - m.origin[j])*m.beamAxis[j];
-            }
-            const double xi = (x - m.start)/m.length;
-            if (xi > 0)
-            {
-                for (int j = 0; j < 3; ++j)
-                {
-                    d[3*i + j] = fraction*m.amplitude*xi*xi*m.direction[j];
-                }
-            }
+            continue;
+        }
+        if (m.type == "twist")
+        {
+            addRotation(r, m.beamAxis, fraction*m.angleDeg*xi*degree, di);
+        }
+        for (int j = 0; j < 3; ++j)
+        {
+            di[j] += fraction*m.amplitude*xi*xi*m.direction[j];
         }
     }
     return d;
