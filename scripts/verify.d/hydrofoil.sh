@@ -26,6 +26,8 @@
 #   HYDROFOIL_FLUID_MESH snappy (default) | cgrid: mesh.sh --fluid-mesh (the boundary-layer mesh)
 #   HYDROFOIL_FLOW, HYDROFOIL_SCHEME, HYDROFOIL_ALGORITHM  run.sh --flow / --scheme / --algorithm
 #                      (defaults laminar, upwind and the case's SIMPLEC)
+#   HYDROFOIL_OSCILLATION_WINDOW  N: run.sh --oscillation-window N (honest coupled solves: no stop
+#                      at a turning point of the force; default unset, the case's off)
 #   HYDROFOIL_INIT_FROM  a path with LEVEL in it (e.g. .../turbulent-upwind-simple-LEVEL/rigid/case):
 #                      each level's fluid starts from that OpenFOAM case's solution (run.sh
 #                      --init-from), LEVEL replaced by the preset; must exist for every level
@@ -47,9 +49,16 @@ npf=2 nps=1
 fluidMesh=${HYDROFOIL_FLUID_MESH:-snappy}
 flow=${HYDROFOIL_FLOW:-laminar} scheme=${HYDROFOIL_SCHEME:-upwind} algorithm=${HYDROFOIL_ALGORITHM:-}
 initPattern=${HYDROFOIL_INIT_FROM:-}
+oscWindow=${HYDROFOIL_OSCILLATION_WINDOW:-}
 case "$fluidMesh" in snappy|cgrid) ;; *) echo "error: hydrofoil: HYDROFOIL_FLUID_MESH='$fluidMesh' must be snappy or cgrid" >&2; exit 2 ;; esac
 # HYDROFOIL_FLOW/SCHEME/ALGORITHM: setFlow.sh names a bad value in one line
 "$case_dir/tools/setFlow.sh" --check-only --flow "$flow" --scheme "$scheme" ${algorithm:+--algorithm "$algorithm"} || exit 2
+case "$oscWindow" in
+  "") ;;
+  *[!0-9]*) echo "error: hydrofoil: HYDROFOIL_OSCILLATION_WINDOW='$oscWindow' must be an integer in 3..1000 (about one period of the force's oscillation), or unset" >&2; exit 2 ;;
+  *) [ "$oscWindow" -ge 3 ] && [ "$oscWindow" -le 1000 ] ||
+       { echo "error: hydrofoil: HYDROFOIL_OSCILLATION_WINDOW='$oscWindow' must be an integer in 3..1000 (about one period of the force's oscillation), or unset" >&2; exit 2; } ;;
+esac
 if [ -n "$initPattern" ]; then
   for level in $levels; do
     [ -d "${initPattern//LEVEL/$level}/constant/polyMesh" ] || { echo "error: hydrofoil: HYDROFOIL_INIT_FROM: no OpenFOAM case ${initPattern//LEVEL/$level} for $level (run its rigid solve first, e.g. scripts/verify hydrofoil-3d-rigid)" >&2; exit 2; }
@@ -80,7 +89,7 @@ for level in $levels; do
     cut -d' ' -f1 /proc/loadavg > "$r/load1"
     { time (cd "$r" && ./run.sh --preset "$level" --material baseline --np-fluid "$npf" --np-solid "$nps" \
         --timeout "$timeout" --mesh-from "$m" --flow "$flow" --scheme "$scheme" \
-        ${algorithm:+--algorithm "$algorithm"} ${initPattern:+--init-from "${initPattern//LEVEL/$level}"} \
+        ${algorithm:+--algorithm "$algorithm"} ${oscWindow:+--oscillation-window "$oscWindow"} ${initPattern:+--init-from "${initPattern//LEVEL/$level}"} \
         > log.run 2>&1); } 2> "$r/time.run" ||
       { echo "error: hydrofoil $level run failed, see $r/log.run" >&2; tail -5 "$r/log.run" >&2; exit 1; }
   fi
