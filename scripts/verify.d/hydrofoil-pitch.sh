@@ -1,0 +1,140 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
+# Loads of the hydrofoil turned by a FIXED pitch on the boundary-layer (cgrid) presets coarse /
+# medium / fine: the coupled t = 0 study (hydrofoil-cgrid) without the coupling. Each level starts
+# from the rigid study's converged flow of its mesh (scripts/verify hydrofoil-3d-rigid, run it
+# first), turns the whole foil by H3P_ANGLE about the spanwise axis through the root quarter chord
+# (fluid-app -prescribed, type rotation; the mesh follows by the case's fsiInverseDistance
+# motion) and solves to an estimated force error of 1e-5 |F| held 100 iterations (or in the mean
+# over two 100-iteration blocks within +-1e-3), as the rigid study. The mapping, the structure
+# and the coupling iteration play no part: where the coupled state refines badly and this study
+# does too, the cause is the flow on the turned foil (cases/hydrofoil/README.md, "Loads of a
+# fixed pitched foil").
+# Writes here: levels.csv (one row per level: cells, iterations, converged, in_the_mean, lift,
+# drag, root moment M_z about (0.3685, 0, 0), their change from the unturned rigid flow, CPU and
+# wall seconds), gci.csv (scripts/history_gci.py --rigid: observed order, extrapolated value,
+# GCI_fine of lift_N, drag_N, root_moment_z_Nm), error_vs_runtime.csv (reference: the
+# extrapolated value in the asymptotic range, else the finest level's).
+# Cost on 2 cores: coarse ~3 min, medium ~6 min, fine ~21 min.
+# Environment:
+#   H3P_ANGLE      pitch [deg], nose-up positive (default -2: about the coupled state's tip twist)
+#   H3P_RUNS       run folders (default $FSI_VERIFY_DIR/runs, not tracked)
+#   H3P_REUSE=1    keep a level whose RUN/case/log.pitch finished instead of redoing it
+#   H3D_RUNS, H3D_ALGORITHM  the rigid study's run folders and algorithm (as hydrofoil-cgrid)
+set -euo pipefail
+: "${FSI_VERIFY_DIR:?run through scripts/verify hydrofoil-pitch}"
+root=${FSI_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}
+export PATH=${FSI_BUILD_DIR:-$root/build}/bin:$PATH
+export LD_LIBRARY_PATH=${FSI_BUILD_DIR:-$root/build}/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
+angle=${H3P_ANGLE:--2}
+runs=${H3P_RUNS:-$FSI_VERIFY_DIR/runs}
+rigidRuns=${H3D_RUNS:-$root/verification/hydrofoil-3d-rigid/runs}
+algorithm=${H3D_ALGORITHM:-simplec}
+reuse=${H3P_REUSE:-0}
+np=2
+die() { echo "error: hydrofoil-pitch: $*" >&2; exit 2; }
+awk -v a="$angle" 'BEGIN { exit !(a ~ /^[-+]?[0-9]*\.?[0-9]+([eE][-+]?[0-9]+)?$/ && a != 0 && a >= -15 && a <= 15) }' ||
+  die "H3P_ANGLE='$angle' must be a pitch in degrees, non-zero, within -15..15 (e.g. -2)"
+case "$algorithm" in simple|simplec) ;; *) die "H3D_ALGORITHM='$algorithm' must be simple or simplec" ;; esac
+levels="coarse medium fine"
+for level in $levels; do
+  src=$rigidRuns/turbulent-upwind-$algorithm-$level
+  [ -f "$src/rigid/rigid.csv" ] ||
+    die "no rigid flow $src/rigid/rigid.csv for $level (run scripts/verify hydrofoil-3d-rigid first)"
+done
+command -v foamDictionary > /dev/null || die "foamDictionary not found (source OpenFOAM's etc/bashrc; scripts/verify does)"
+mkdir -p "$runs"
+
+folders=()
+for level in $levels; do
+  src=$rigidRuns/turbulent-upwind-$algorithm-$level
+  r=$runs/pitch$angle-$algorithm-$level c=$runs/pitch$angle-$algorithm-$level/case
+  if [ "$reuse" = 1 ] && grep -q '^End' "$c/log.pitch" 2> /dev/null; then
+    echo "hydrofoil-pitch: reusing $r"
+  else
+    echo "hydrofoil-pitch: $level ($(date +%H:%M:%S), load $(cut -d' ' -f1 /proc/loadavg))"
+    rm -rf "$r"; mkdir -p "$r"
+    cp -r "$src/rigid/case" "$c"
+    rm -rf "$c/postProcessing"
+    # the rigid study's stopping test (rigid.sh), for the one prescribed solve
+    foamDictionary -entry coupled -set "{ maxIterations 3000; residualDrop 0; forceTolerance 1e-5;
+      residualRequired false; estimateForceError true; minIterations 100; stableIterations 100;
+      bandTolerance 1e-3; bandWindow 100; warmStart { type previous; flux interpolated; } }" \
+      "$c/system/fsiDict" > /dev/null
+    foamDictionary -entry prescribed -set "{ type rotation; origin (0.3685 0 0); axis (0 0 1);
+      angle $angle; steps 1; solveFlow true; }" "$c/system/fsiDict" > /dev/null
+    foamDictionary -entry endTime -set 100000 "$c/system/controlDict" > /dev/null
+    (cd "$c" && /usr/bin/time -f '%e %U %S' -o time.pitch \
+        mpirun --oversubscribe -np "$np" fluid-app -prescribed -parallel > log.pitch 2>&1) ||
+      { tail -5 "$c/log.pitch" >&2; echo "error: hydrofoil-pitch: $level failed (see $c/log.pitch)" >&2; exit 1; }
+  fi
+  # the case's function objects (forces: M_z) on the turned flow, as rigid.sh does after a solve
+  if ! ls "$c"/postProcessing/forces/*/moment.dat > /dev/null 2>&1; then
+    (cd "$c" && mpirun --oversubscribe -np "$np" simpleFoam -postProcess -parallel -time 1 \
+        > log.postProcess 2>&1) ||
+      { tail -5 "$c/log.postProcess" >&2; echo "error: hydrofoil-pitch: $level: simpleFoam -postProcess failed (see $c/log.postProcess)" >&2; exit 1; }
+  fi
+  # rigid.csv of the turned foil (history_gci.py --rigid reads it): the interface force of the
+  # solve (the mean force when accepted in the mean) and M_z of the forces function object
+  "$FSI_PYTHON" - "$c" "$src/rigid/rigid.csv" "$r/rigid.csv" <<'PY'
+import csv, glob, re, sys
+case, rigidCsv, out = sys.argv[1:]
+rigid = next(csv.DictReader(open(rigidCsv)))
+last = list(csv.DictReader(open(case + "/postProcessing/fsi/solveIterations.csv")))[-1]
+log = open(case + "/log.pitch").read()
+m = re.findall(r"fsi: step 1 iteration 1: (\d+) SIMPLE iterations(.*?), residuals .*?interface "
+               r"force \(([^ ]+) ([^ ]+) ([^ )]+)\) N", log)
+if not m:
+    sys.exit("error: hydrofoil-pitch: %s/log.pitch has no finished solve" % case)
+iterations, note, fx, fy, fz = m[-1]
+inMean = "in the mean" in note
+converged = "converged" in note or int(iterations) < 3000
+moments = sorted(glob.glob(case + "/postProcessing/forces/*/moment.dat"))
+row = [l for l in open(moments[-1]) if not l.startswith("#")][-1]
+mz = float(re.findall(r"\(([^)]*)\)", row)[0].split()[2])
+wall, user, sys_ = open(case + "/time.pitch").read().split()
+fields = ["cells", "flow", "scheme", "iterations", "converged", "in_the_mean", "band", "lift_N",
+          "drag_N", "root_moment_z_Nm", "rigid_lift_N", "rigid_drag_N", "rigid_root_moment_z_Nm",
+          "cpu_s", "wall_s"]
+with open(out, "w", newline="") as f:
+    w = csv.writer(f)
+    w.writerow(fields)
+    w.writerow([rigid["cells"], rigid["flow"], rigid["scheme"], iterations, int(converged),
+                int(inMean), "", "%.6g" % -float(fy), "%.6g" % float(fx), "%.6g" % mz,
+                rigid["lift_N"], rigid["drag_N"], rigid["root_moment_z_Nm"],
+                "%.1f" % (float(user) + float(sys_)), "%.1f" % float(wall)])
+PY
+  tail -n 1 "$r/rigid.csv"
+  folders+=("$r")
+done
+
+model=turbulent-upwind-$algorithm-cgrid-pitch$angle
+"$FSI_PYTHON" "$root/scripts/history_gci.py" --rigid --model "$model" --out "$FSI_VERIFY_DIR/gci.csv" \
+    --table "${folders[@]}"
+"$FSI_PYTHON" - "$FSI_VERIFY_DIR" "$np" "${folders[@]}" <<'PY'
+import csv, os, sys
+outDir, np = sys.argv[1:3]
+folders = sys.argv[3:]
+rows = [next(csv.DictReader(open(os.path.join(f, "rigid.csv")))) for f in folders]
+names = ["coarse", "medium", "fine"]
+with open(os.path.join(outDir, "levels.csv"), "w", newline="") as f:
+    w = csv.writer(f)
+    w.writerow(["preset"] + list(rows[0].keys()) + ["lift_change_N", "drag_change_N",
+                                                    "root_moment_z_change_Nm"])
+    for n, r in zip(names, rows):
+        w.writerow([n] + list(r.values()) +
+                   ["%.6g" % (float(r[q]) - float(r["rigid_" + q])) for q in
+                    ("lift_N", "drag_N", "root_moment_z_Nm")])
+gci = {r["quantity"]: r for r in csv.DictReader(open(os.path.join(outDir, "gci.csv")))}
+with open(os.path.join(outDir, "error_vs_runtime.csv"), "w") as f:
+    f.write("level,size,cores,wall_s,quantity,value,reference,rel_error,cpu_s,iterations,"
+            "converged\n")
+    for q in ("lift_N", "drag_N", "root_moment_z_Nm"):
+        g = gci[q]
+        ref = float(g["extrapolated"]) if g["asymptotic_range"] == "yes" else float(g["fine"])
+        for n, r in zip(names, rows):
+            v = float(r[q])
+            f.write(",".join([n, r["cells"], np, r["wall_s"], q, "%.8g" % v, "%.8g" % ref,
+                              "%.6e" % (abs(v - ref) / abs(ref)), r["cpu_s"], r["iterations"],
+                              r["converged"]]) + "\n")
+PY
