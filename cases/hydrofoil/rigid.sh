@@ -5,7 +5,7 @@
 #
 #   cases/hydrofoil/rigid.sh --mesh DIR/fluid --out RUNDIR [--flow laminar|transition|turbulent]
 #       [--scheme upwind|linearUpwind] [--np 2] [--tolerance 1e-5] [--max-iterations 3000]
-#       [--init-from RUN] [--algorithm simple] [--band-tolerance B]
+#       [--init-from RUN] [--algorithm simple] [--band-tolerance B] [--root-wall wall|slip]
 #
 #   --tolerance T        stop when the estimated force error is <= T |F|, held 100 iterations
 #                        (fsiDict rigid/estimateForceError; the 2-D section mode's criterion)
@@ -15,6 +15,9 @@
 #                        nearest-cell (tools/mapInitialFields.sh): grid sequencing, fewer
 #                        iterations; the stopping test is unchanged
 #   --algorithm simple   classic SIMPLE instead of the case's SIMPLEC (tools/setFlow.sh)
+#   --root-wall slip     the tunnel's root wall z = 0 a slip wall (tools/rootWall.sh; default
+#                        wall, the paper's no-slip): the second-order flow's steady state (README,
+#                        "A steady second-order flow: the slip root wall")
 #   --band-tolerance B   also stop "in the mean" (fsiDict rigid/bandTolerance, fluid-app/README.md):
 #                        at the end of a 100-iteration block, when over the last two blocks the
 #                        force stayed within +-B |F| and the blocks' means differ by <= T |F|.
@@ -33,7 +36,7 @@
 # fluid-app must be on PATH (scripts/run and scripts/verify put the build's bin/ first).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-mesh="" out="" flow=laminar scheme=upwind np=2 tol=1e-5 maxIt=3000 initFrom="" algorithm="" band=0
+mesh="" out="" flow=laminar scheme=upwind np=2 tol=1e-5 maxIt=3000 initFrom="" algorithm="" band=0 rootWall=wall
 die() { echo "error: rigid.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
     case "$1" in
@@ -47,7 +50,8 @@ while [ $# -gt 0 ]; do
         --init-from) initFrom="$2"; shift 2 ;;
         --algorithm) algorithm="$2"; shift 2 ;;
         --band-tolerance) band="$2"; shift 2 ;;
-        -h|--help) sed -n '3,31p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        --root-wall) rootWall="$2"; shift 2 ;;
+        -h|--help) sed -n '3,36p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) die "unknown option '$1' (see --help)" ;;
     esac
 done
@@ -62,6 +66,7 @@ awk -v b="$band" 'BEGIN{exit !(b ~ /^[0-9.eE+-]+$/ && b + 0 >= 0 && b + 0 < 1)}'
 [ "$maxIt" -ge 200 ] || awk -v b="$band" 'BEGIN{exit !(b + 0 == 0)}' ||
     die "--band-tolerance needs --max-iterations >= 200 (two blocks of 100)"
 "$here/tools/setFlow.sh" --check-only --flow "$flow" --scheme "$scheme" ${algorithm:+--algorithm "$algorithm"}
+case "$rootWall" in wall|slip) ;; *) die "--root-wall '$rootWall' must be wall (the paper's no-slip tunnel) or slip" ;; esac
 [ -z "$initFrom" ] || { [ -f "$initFrom/rigid.csv" ] && [ -d "$initFrom/case" ]; } ||
     die "--init-from '$initFrom' is not a finished rigid.sh run (no rigid.csv / case)"
 command -v fluid-app > /dev/null || die "fluid-app not on PATH (build first; scripts/run sets PATH)"
@@ -74,7 +79,9 @@ case="$out/case"
 caseArgs=()
 [ -z "$initFrom" ] || caseArgs=(--init-from "$initFrom/case")
 [ -z "$algorithm" ] || caseArgs+=(--algorithm "$algorithm")
+caseArgs+=(--root-wall "$rootWall")
 "$here/tools/fluidCase.sh" "$case" "$mesh" "$np" --flow "$flow" --scheme "$scheme" ${caseArgs[@]+"${caseArgs[@]}"}
+[ "$rootWall" = wall ] || log "root wall z = 0: slip (tools/rootWall.sh)"
 [ -z "$initFrom" ] || log "initial fields mapped from $initFrom"
 fd() { foamDictionary "$case/$1" -entry "$2" -set "$3" > /dev/null; }
 fd system/fsiDict rigid/maxIterations "$maxIt"

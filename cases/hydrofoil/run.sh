@@ -27,6 +27,11 @@
 #                                           "Flow models")
 #   --scheme upwind|linearUpwind            convection of U and the turbulence fields (default
 #                                           upwind; linearUpwind: second order, bounded)
+#   --root-wall wall|slip                   the tunnel's root wall z = 0 (default wall: the paper's
+#                                           no-slip tunnel); slip: a slip patch `root`
+#                                           (tools/rootWall.sh), with which the second-order flow
+#                                           has a steady state (README, "A steady second-order
+#                                           flow: the slip root wall")
 #   --algorithm simple|simplec              classic SIMPLE (consistent no, relaxation p 0.3,
 #                                           U and turbulence 0.7) or the case's SIMPLEC (p 1, U
 #                                           0.9; tools/setFlow.sh). Default: simplec (README,
@@ -115,7 +120,7 @@ set -euo pipefail
 source "$FSI_ROOT/scripts/env.sh"
 
 preset=coarse material=both npf=2 nps=2 launch=mpmd tc=0.12 cli=0.5 end="" timeout=900 meshFrom="" restart=0
-flow="" scheme=upwind algorithm="" fluidMesh="" initFrom="" band="" maxFluidIt="" fluidTol="" couplingTol="" bandWindow="" bandMean="" bandRef="" oscWindow="" wsFlux="" wsMaxCoef="" mapSmoothing=""
+flow="" scheme=upwind rootWall=wall algorithm="" fluidMesh="" initFrom="" band="" maxFluidIt="" fluidTol="" couplingTol="" bandWindow="" bandMean="" bandRef="" oscWindow="" wsFlux="" wsMaxCoef="" mapSmoothing=""
 die() { echo "error: hydrofoil/run.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -132,6 +137,7 @@ while [ $# -gt 0 ]; do
     --flow) flow=$2; shift 2 ;;
     --scheme) scheme=$2; shift 2 ;;
     --algorithm) algorithm=$2; shift 2 ;;
+    --root-wall) [ $# -ge 2 ] || die "--root-wall needs wall or slip"; rootWall=$2; shift 2 ;;
     --fluid-mesh) fluidMesh=$2; shift 2 ;;
     --init-from) [ $# -ge 2 ] || die "--init-from needs an OpenFOAM case folder"; initFrom=$2; shift 2 ;;
     --band-tolerance) [ $# -ge 2 ] || die "--band-tolerance needs a value"; band=$2; shift 2 ;;
@@ -154,6 +160,7 @@ case "$material" in viscoelastic|baseline|relaxed|both|elastic) ;; *) die "--mat
 case "$launch" in mpmd|port) ;; *) die "--launch must be mpmd or port" ;; esac
 case "$fluidMesh" in ""|snappy|cgrid) ;; *) die "--fluid-mesh must be cgrid or snappy (got '$fluidMesh')" ;; esac
 case "$algorithm" in ""|simple|simplec) ;; *) die "--algorithm must be simple or simplec (got '$algorithm')" ;; esac
+case "$rootWall" in wall|slip) ;; *) die "--root-wall must be wall (the paper's no-slip tunnel) or slip (got '$rootWall')" ;; esac
 # The fluid mesh of this run: a new one (--fluid-mesh, default cgrid) or the one of --mesh-from /
 # --restart; the model follows the mesh unless given (tools/meshModel.sh; README, "The case
 # default"): k-omega SST with SIMPLEC on the boundary-layer mesh (classic SIMPLE on an older
@@ -237,7 +244,7 @@ else
       --np "$npf" --fluid-mesh "$fluidMesh" > "$run/log.mesh" 2>&1 || { tail -n 20 "$run/log.mesh" >&2; die "meshing failed (log.mesh)"; }
 fi
 grep -E "^fluid:|^solid" "$run/mesh/mesh-summary.txt" 2>/dev/null | sed 's/^/  /' || true
-log "model: flow $flow, convection $scheme, pressure-velocity ${algorithm:-simplec}, fluid mesh $fluidMesh"
+log "model: flow $flow, convection $scheme, pressure-velocity ${algorithm:-simplec}, fluid mesh $fluidMesh, root wall $rootWall"
 if [ "$fluidMesh" = cgrid ] && [ "$algorithm" = simple ]; then
   log "note: with classic SIMPLE the coupled solves on the boundary-layer mesh converge slowly (a viscoelastic history takes hours; README, \"The case default\"); a mesh made now (without --mesh-from) runs SIMPLEC"
 fi
@@ -281,7 +288,7 @@ for m in "${runs[@]}"; do
   if [ ${#resume[@]} -eq 0 ]; then
     # the mesh's fluid case with this case's settings, flow model and scheme, decomposed
     "$run/tools/fluidCase.sh" "$fluid" "$run/mesh/fluid" "$npf" --flow "$flow" --scheme "$scheme" \
-        ${algorithm:+--algorithm "$algorithm"} ${initFrom:+--init-from "$initFrom"}
+        ${algorithm:+--algorithm "$algorithm"} ${initFrom:+--init-from "$initFrom"} --root-wall "$rootWall"
     # the options given, as fsiDict coupled/KEY
     for kv in bandTolerance="$band" maxIterations="$maxFluidIt" bandMeanTolerance="$bandMean" \
               bandReferenceForce="$bandRef" oscillationWindow="$oscWindow" bandWindow="$bandWindow" \

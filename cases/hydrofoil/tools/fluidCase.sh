@@ -3,31 +3,35 @@
 # The OpenFOAM case of one fluid run, from a mesh folder's fluid case and this case's settings.
 #
 #   cases/hydrofoil/tools/fluidCase.sh DEST MESH_FLUID NP [--flow F] [--scheme S]
-#       [--algorithm simple] [--init-from SOURCE_CASE]
+#       [--algorithm simple] [--init-from SOURCE_CASE] [--root-wall wall|slip]
 #
 # Copies MESH_FLUID (a mesh.sh fluid case) to DEST (replaced), gives it this case's solver
 # settings (fluid/system/fsiDict, fvSchemes, fvSolution: a mesh folder may predate them), the
 # fields of every flow model that it lacks (fluid/0.orig), the flow model and scheme
 # (tools/setFlow.sh, options passed on), and decomposes it for NP ranks (hierarchical; NP 1:
 # serial, no processor folders). --init-from: the initial fields are SOURCE_CASE's solution
-# mapped onto this mesh (tools/mapInitialFields.sh; grid sequencing). Used by run.sh for the
+# mapped onto this mesh (tools/mapInitialFields.sh; grid sequencing). --root-wall slip: the
+# tunnel's root wall z = 0 becomes a slip patch `root` (tools/rootWall.sh; default wall: the
+# paper's no-slip tunnel). Used by run.sh for the
 # coupled runs and by scripts/bench-fsi for its rigid baseline, so that both solve with the
 # same settings; options other than --init-from go to tools/setFlow.sh.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 case_dir="$(cd "$here/.." && pwd)"
 die() { echo "error: fluidCase.sh: $*" >&2; exit 2; }
-[ $# -ge 3 ] || die "usage: fluidCase.sh DEST MESH_FLUID NP [--flow F] [--scheme S] [--algorithm simple] [--init-from SOURCE_CASE]"
+[ $# -ge 3 ] || die "usage: fluidCase.sh DEST MESH_FLUID NP [--flow F] [--scheme S] [--algorithm simple] [--init-from SOURCE_CASE] [--root-wall wall|slip]"
 dest=$1 meshFluid=$2 np=$3; shift 3
-initFrom="" flowArgs=()
+initFrom="" rootWall=wall flowArgs=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --init-from) [ $# -ge 2 ] || die "--init-from needs a case folder"; initFrom=$2; shift 2 ;;
+    --root-wall) [ $# -ge 2 ] || die "--root-wall needs wall or slip"; rootWall=$2; shift 2 ;;
     *) flowArgs+=("$1"); shift ;;
   esac
 done
 [ -d "$meshFluid/constant/polyMesh" ] || die "$meshFluid is not a fluid case with a mesh"
 [[ "$np" =~ ^[1-9][0-9]*$ ]] || die "NP '$np' must be a positive integer"
+case "$rootWall" in wall|slip) ;; *) die "--root-wall '$rootWall' must be wall (the paper's no-slip tunnel) or slip" ;; esac
 rm -rf "$dest"
 cp -r "$meshFluid" "$dest"
 rm -rf "$dest"/processor*
@@ -36,6 +40,8 @@ cp "$case_dir/fluid/system/fsiDict" "$case_dir/fluid/system/fvSchemes" \
 for f in "$case_dir/fluid/0.orig"/*; do [ -e "$dest/0/$(basename "$f")" ] || cp "$f" "$dest/0/"; done
 "$here/setFlow.sh" "$dest" ${flowArgs[@]+"${flowArgs[@]}"} > /dev/null
 [ -z "$initFrom" ] || "$here/mapInitialFields.sh" "$dest" "$initFrom" > /dev/null
+# after the mapping: mapFields -consistent needs the source's patches
+[ "$rootWall" = wall ] || "$here/rootWall.sh" "$dest" > /dev/null
 if [ "$np" -gt 1 ]; then
   foamDictionary "$dest/system/decomposeParDict" -entry numberOfSubdomains -set "$np" >/dev/null
   foamDictionary "$dest/system/decomposeParDict" -entry method -set hierarchical >/dev/null

@@ -15,6 +15,8 @@
 #    ranks has the same position on both (written with 17 digits: exactly). Before the
 #    shared-point synchronisation the second step stopped with "face 0 area does not match
 #    neighbour" (the coupled run on this mesh: at level 0's third coupling iteration).
+#  - tools/fluidCase.sh --root-wall slip moves exactly the root wall's faces (one per plane
+#    cell) from `walls` to a patch `root` with slip / zero-gradient fields, and decomposes.
 # usage: test_cgrid_motion.sh WORKDIR   (environment: FSI_BUILD_DIR)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd)"
@@ -99,3 +101,29 @@ assert shared > 0, "no point shared by the two ranks"
 assert worst == 0.0, "a point shared by the ranks moved to two positions, %.3g m apart" % worst
 print("parallel motion: 2 steps on 2 ranks, %d shared points at the same position on both" % shared)
 EOP
+# The slip root wall (tools/rootWall.sh through tools/fluidCase.sh --root-wall slip): the root
+# wall's faces (the plane mesh's cells, one face each on z = 0) leave `walls` for a patch `root`,
+# which the fields give slip / zero-gradient conditions; the case still decomposes.
+slip=$work-rootwall
+"$root/cases/hydrofoil/tools/fluidCase.sh" "$slip" "$work/fluid" 2 --flow turbulent --root-wall slip > "$slip.log" 2>&1 ||
+    { tail -5 "$slip.log"; echo "FAIL: fluidCase.sh --root-wall slip"; exit 1; }
+/usr/bin/python3 - "$work/fluid" "$slip" "$summary" <<'EOP'
+import re, sys
+plain, slip, summary = sys.argv[1:]
+def patches(case):
+    text = open(case + "/constant/polyMesh/boundary").read()
+    return {m.group(1): int(m.group(2)) for m in
+            re.finditer(r"\n\s*(\w+)\s*\{[^}]*?nFaces\s+(\d+);", text)}
+plane = int(dict(kv.split("=", 1) for kv in open(summary).read().split())["plane_cells"])
+a, b = patches(plain), patches(slip)
+assert "root" not in a and b.get("root") == plane, ("root faces", b.get("root"), "plane cells", plane)
+assert b["walls"] == a["walls"] - plane, ("walls", a["walls"], b["walls"])
+assert all(b[p] == a[p] for p in a if p != "walls"), (a, b)
+for field, kind in (("U", "slip"), ("p", "zeroGradient"), ("k", "zeroGradient"),
+                    ("omega", "zeroGradient"), ("pointDisplacement", "slip")):
+    text = open(slip + "/0/" + field, errors="replace").read()
+    m = re.search(r"\n\s*root\s*\{\s*type\s+(\w+);", text)
+    assert m and m.group(1) == kind, (field, m and m.group(1))
+print("slip root wall: %d faces from walls to root, fields set, decomposed" % plane)
+EOP
+[ -d "$slip/processor1" ] || { echo "FAIL: fluidCase.sh --root-wall slip did not decompose"; exit 1; }

@@ -4,7 +4,7 @@
 #
 # run.sh refuses bad values of --band-tolerance, --band-mean-tolerance, --band-reference-force,
 # --band-window, --oscillation-window, --fluid-tolerance, --coupling-tolerance, --warm-start-flux,
-# --mapping-smoothing, --max-fluid-iterations, --fluid-mesh and --algorithm (and a --fluid-mesh
+# --mapping-smoothing, --max-fluid-iterations, --fluid-mesh, --algorithm and --root-wall (and a --fluid-mesh
 # that contradicts the mesh of --mesh-from) before it writes anything:
 # exit 2, one line on stderr naming the option, no mesh/ or results/ in the run folder. Needs
 # FSI_ROOT (the repository); no OpenFOAM run, no MPI.
@@ -52,6 +52,7 @@ check --mapping-smoothing 0.2mm
 check --mapping-smoothing 0.05  # a radius in m: 5 cm smooths the whole foil
 check --fluid-mesh blockMesh
 check --algorithm piso
+check --root-wall free
 # --fluid-mesh that contradicts the mesh of --mesh-from: refused before anything is written
 fake=$work/fake-snappy-run
 rm -rf "$fake"; mkdir -p "$fake/mesh"
