@@ -7,7 +7,7 @@
 #
 #   cases/hydrofoil/blcheck.sh --out RUNDIR [--preset coarse|medium|fine] [--flow turbulent]
 #       [--scheme upwind] [--np 2] [--max-iterations 3000] [--init-from BLCHECK_RUN]
-#       [--algorithm simple] [--band-tolerance B]
+#       [--algorithm simple] [--band-tolerance B] [--root-wall wall|slip]
 #
 #   blcheck: preset=P cells=N motion=OK motion_max_nonorth_deg=X iterations=N converged=0|1
 #     in_the_mean=0|1 band=X yplus_max=X yplus_mean=X yplus_le1_pct=X tip_yplus_max=X lift_N=X drag_N=X
@@ -16,13 +16,14 @@
 # --init-from: the rigid solve starts from another blcheck.sh run's flow (e.g. the next coarser
 # preset; rigid.sh --init-from BLCHECK_RUN/rigid). --algorithm simple: classic SIMPLE (rigid.sh).
 # --band-tolerance B: the solve may also stop in the mean (rigid.sh; 0, the default: off).
+# --root-wall slip: the tunnel's root wall a slip wall (rigid.sh; default wall, no-slip).
 # Exit 1 when the motion check fails or the first-cell y+ exceeds 1 anywhere on the foil (the
 # mesh's promise); the line is printed either way. Cost: coarse about 9 min on 2 cores (mesh
 # 20 s, motion 30 s, rigid solve 8 min), medium ~25 min, fine more than an hour.
 # Needs what mesh.sh and rigid.sh need (OpenFOAM v1912, gmsh, the build's bin/ on PATH).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-out="" preset=coarse flow=turbulent scheme=upwind np=2 maxIt=3000 initFrom="" algorithm="" band=0
+out="" preset=coarse flow=turbulent scheme=upwind np=2 maxIt=3000 initFrom="" algorithm="" band=0 rootWall=wall
 die() { echo "error: blcheck.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
     case "$1" in
@@ -35,7 +36,8 @@ while [ $# -gt 0 ]; do
         --init-from) initFrom="$2"; shift 2 ;;
         --algorithm) algorithm="$2"; shift 2 ;;
         --band-tolerance) band="$2"; shift 2 ;;
-        -h|--help) sed -n '3,22p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        --root-wall) rootWall="$2"; shift 2 ;;
+        -h|--help) sed -n '3,23p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) die "unknown option '$1' (see --help)" ;;
     esac
 done
@@ -44,6 +46,7 @@ case "$preset" in coarse|medium|fine) ;; *) die "--preset must be coarse, medium
 "$here/tools/setFlow.sh" --check-only --flow "$flow" --scheme "$scheme" ${algorithm:+--algorithm "$algorithm"}
 awk -v b="$band" 'BEGIN{exit !(b ~ /^[0-9.eE+-]+$/ && b + 0 >= 0 && b + 0 < 1)}' ||
     die "--band-tolerance '$band' must be 0 (off) or in (0, 1)"
+case "$rootWall" in wall|slip) ;; *) die "--root-wall '$rootWall' must be wall (the paper's no-slip tunnel) or slip" ;; esac
 [ -z "$initFrom" ] || [ -f "$initFrom/rigid/rigid.csv" ] ||
     die "--init-from '$initFrom' is not a finished blcheck.sh run (no rigid/rigid.csv)"
 command -v fluid-app > /dev/null || die "fluid-app is not on PATH (put the build's bin/ first)"
@@ -61,7 +64,7 @@ nonorth=$(awk '/non-orthogonality Max/ {print $4; exit}' "$out/motion/log.checkM
 log "rigid solve ($flow, $scheme)"
 "$here/rigid.sh" --mesh "$out/mesh/fluid" --out "$out/rigid" --flow "$flow" --scheme "$scheme" \
     --np "$np" --max-iterations "$maxIt" ${initFrom:+--init-from "$(cd "$initFrom" && pwd)/rigid"} \
-    ${algorithm:+--algorithm "$algorithm"} --band-tolerance "$band" \
+    ${algorithm:+--algorithm "$algorithm"} --band-tolerance "$band" --root-wall "$rootWall" \
     > "$out/log.rigid" 2>&1 ||
     die "rigid.sh failed (see $out/log.rigid)"
 /usr/bin/python3 - "$out/rigid/rigid.csv" "$preset" "$motion" "${nonorth:-nan}" <<'EOP'

@@ -34,6 +34,10 @@
 #                 times the change) never accepts; the loads are then the mean flow's (fluid-app
 #                 averages the fields over the two blocks; until 2026-12-04 the last iterate's,
 #                 as in the tracked study). 0: off
+#   H3D_ROOT_WALL slip: the tunnel's root wall a slip wall (blcheck.sh --root-wall; default wall,
+#                 the paper's no-slip): with H3D_SCHEME=linearUpwind the second-order study, whose
+#                 flow has no steady state with the no-slip root wall (README, "A steady
+#                 second-order flow: the slip root wall"); run folders and model get "-slip"
 #   H3D_RUNS      run folders (default $FSI_VERIFY_DIR/runs, not tracked)
 #   H3D_REUSE=1   keep a level whose RUN/rigid/rigid.csv exists instead of redoing it
 #   H3D_SEQUENCE  1 (default): every level starts from the next coarser level's flow
@@ -50,6 +54,8 @@ runs=${H3D_RUNS:-$FSI_VERIFY_DIR/runs}
 algorithm=${H3D_ALGORITHM:-simplec}
 case "$algorithm" in simple|simplec) ;; *) echo "error: hydrofoil-3d-rigid: H3D_ALGORITHM='$algorithm' must be simple or simplec" >&2; exit 2 ;; esac
 reuse=${H3D_REUSE:-0}
+rootWall=${H3D_ROOT_WALL:-wall}
+case "$rootWall" in wall) suffix="" ;; slip) suffix=-slip ;; *) echo "error: hydrofoil-3d-rigid: H3D_ROOT_WALL='$rootWall' must be wall or slip" >&2; exit 2 ;; esac
 band=${H3D_BAND:-1e-3}
 np=2
 set -- $levels
@@ -60,7 +66,7 @@ folders=() previous=""
 raw=$FSI_VERIFY_DIR/levels.csv
 : > "$raw.tmp"
 for level in $levels; do
-    r=$runs/$flow-$scheme-$algorithm-$level
+    r=$runs/$flow-$scheme-$algorithm$suffix-$level
     if [ "$reuse" = 1 ] && [ -f "$r/rigid/rigid.csv" ] && [ -f "$r/blcheck.txt" ]; then
         echo "hydrofoil-3d-rigid: reusing $r"
     else
@@ -71,7 +77,7 @@ for level in $levels; do
         [ "$algorithm" = simplec ] || init+=(--algorithm "$algorithm")
         # blcheck exits 1 when y+ > 1 or the motion check fails: recorded in its line, not fatal
         "$root/cases/hydrofoil/blcheck.sh" --out "$r" --preset "$level" --flow "$flow" \
-            --scheme "$scheme" --np "$np" --band-tolerance "$band" ${init[@]+"${init[@]}"} \
+            --scheme "$scheme" --np "$np" --band-tolerance "$band" --root-wall "$rootWall" ${init[@]+"${init[@]}"} \
             > "$r.log" 2>&1 || true
         grep '^blcheck:' "$r.log" > "$r/blcheck.txt" ||
             { tail -5 "$r.log" >&2; echo "error: hydrofoil-3d-rigid: $level failed (see $r.log)" >&2; exit 1; }
@@ -81,7 +87,7 @@ for level in $levels; do
     folders+=("$r") previous=$r
 done
 
-"$FSI_PYTHON" "$root/scripts/history_gci.py" --rigid --model "$flow-$scheme-$algorithm-cgrid" \
+"$FSI_PYTHON" "$root/scripts/history_gci.py" --rigid --model "$flow-$scheme-$algorithm-cgrid$suffix" \
     --out "$FSI_VERIFY_DIR/gci.csv" --table "${folders[@]}"
 
 "$FSI_PYTHON" - "$raw.tmp" "$raw" "$FSI_VERIFY_DIR" "$np" "${folders[@]}" <<'PY'
