@@ -32,6 +32,10 @@ done
 [ -d "$meshFluid/constant/polyMesh" ] || die "$meshFluid is not a fluid case with a mesh"
 [[ "$np" =~ ^[1-9][0-9]*$ ]] || die "NP '$np' must be a positive integer"
 case "$rootWall" in wall|slip) ;; *) die "--root-wall '$rootWall' must be wall (the paper's no-slip tunnel) or slip" ;; esac
+sourceRoot=0
+[ -z "$initFrom" ] || ! grep -q '^ *root$' "$initFrom/constant/polyMesh/boundary" 2> /dev/null || sourceRoot=1
+[ "$sourceRoot" = 0 ] || [ "$rootWall" = slip ] ||
+  die "--init-from '$initFrom' has a slip root wall (patch root): give --root-wall slip, or start from a no-slip run"
 rm -rf "$dest"
 cp -r "$meshFluid" "$dest"
 rm -rf "$dest"/processor*
@@ -39,9 +43,11 @@ cp "$case_dir/fluid/system/fsiDict" "$case_dir/fluid/system/fvSchemes" \
    "$case_dir/fluid/system/fvSolution" "$dest/system/"
 for f in "$case_dir/fluid/0.orig"/*; do [ -e "$dest/0/$(basename "$f")" ] || cp "$f" "$dest/0/"; done
 "$here/setFlow.sh" "$dest" ${flowArgs[@]+"${flowArgs[@]}"} > /dev/null
+# mapFields -consistent needs the source's patches: the root patch is made before the mapping
+# when the source has one (a slip-root-wall run), after it otherwise
+[ "$rootWall" = wall ] || [ "$sourceRoot" = 0 ] || "$here/rootWall.sh" "$dest" > /dev/null
 [ -z "$initFrom" ] || "$here/mapInitialFields.sh" "$dest" "$initFrom" > /dev/null
-# after the mapping: mapFields -consistent needs the source's patches
-[ "$rootWall" = wall ] || "$here/rootWall.sh" "$dest" > /dev/null
+[ "$rootWall" = wall ] || [ "$sourceRoot" = 1 ] || "$here/rootWall.sh" "$dest" > /dev/null
 if [ "$np" -gt 1 ]; then
   foamDictionary "$dest/system/decomposeParDict" -entry numberOfSubdomains -set "$np" >/dev/null
   foamDictionary "$dest/system/decomposeParDict" -entry method -set hierarchical >/dev/null

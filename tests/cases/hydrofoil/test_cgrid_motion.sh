@@ -16,7 +16,8 @@
 #    shared-point synchronisation the second step stopped with "face 0 area does not match
 #    neighbour" (the coupled run on this mesh: at level 0's third coupling iteration).
 #  - tools/fluidCase.sh --root-wall slip moves exactly the root wall's faces (one per plane
-#    cell) from `walls` to a patch `root` with slip / zero-gradient fields, and decomposes.
+#    cell) from `walls` to a patch `root` with slip / zero-gradient fields, and decomposes; a
+#    no-slip case refuses to start from such a case (--init-from), before writing anything.
 # usage: test_cgrid_motion.sh WORKDIR   (environment: FSI_BUILD_DIR)
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd)"
@@ -127,3 +128,12 @@ for field, kind in (("U", "slip"), ("p", "zeroGradient"), ("k", "zeroGradient"),
 print("slip root wall: %d faces from walls to root, fields set, decomposed" % plane)
 EOP
 [ -d "$slip/processor1" ] || { echo "FAIL: fluidCase.sh --root-wall slip did not decompose"; exit 1; }
+# A no-slip case cannot start from a slip-root-wall run's flow (mapFields -consistent needs the
+# same patches): refused in one line, before anything is written.
+refused=$work-refused
+rm -rf "$refused"; rc=0
+"$root/cases/hydrofoil/tools/fluidCase.sh" "$refused" "$work/fluid" 2 --init-from "$slip" > /dev/null 2> "$refused.err" || rc=$?
+if [ "$rc" != 2 ] || [ "$(wc -l < "$refused.err")" != 1 ] || ! grep -q -- "--root-wall slip" "$refused.err" || [ -e "$refused" ]; then
+    echo "FAIL: --init-from a slip-root-wall case into a no-slip one: exit $rc, $(cat "$refused.err")"; exit 1
+fi
+echo "refused: $(cat "$refused.err")"
