@@ -90,26 +90,16 @@ done
 "$FSI_PYTHON" "$root/scripts/history_gci.py" --rigid --model "$flow-$scheme-$algorithm-cgrid$suffix" \
     --out "$FSI_VERIFY_DIR/gci.csv" --table "${folders[@]}"
 
-"$FSI_PYTHON" - "$raw.tmp" "$raw" "$FSI_VERIFY_DIR" "$np" "${folders[@]}" <<'PY'
+"$FSI_PYTHON" - "$raw.tmp" "$raw" <<'PY'
 import csv, os, sys
-rawIn, rawOut, outDir, np = sys.argv[1:5]
-folders = sys.argv[5:]
+rawIn, rawOut = sys.argv[1:3]
 lines = [dict(kv.split("=", 1) for kv in l.split()[1:]) for l in open(rawIn) if l.strip()]
 with open(rawOut, "w", newline="") as f:
     w = csv.DictWriter(f, fieldnames=list(lines[0].keys()))
     w.writeheader()
     w.writerows(lines)
 os.remove(rawIn)
-gci = {r["quantity"]: r for r in csv.DictReader(open(os.path.join(outDir, "gci.csv")))}
-with open(os.path.join(outDir, "error_vs_runtime.csv"), "w") as f:
-    f.write("level,size,cores,wall_s,quantity,value,reference,rel_error,cpu_s,iterations,"
-            "converged,yplus_max,motion\n")
-    for q in ("lift_N", "drag_N", "root_moment_z_Nm"):
-        g = gci[q]
-        ref = float(g["extrapolated"]) if g["asymptotic_range"] == "yes" else float(g["fine"])
-        for l in lines:
-            v = float(l[q])
-            f.write(",".join([l["preset"], l["cells"], np, l["wall_s"], q, "%.8g" % v, "%.8g" % ref,
-                              "%.6e" % (abs(v - ref) / abs(ref)), l["cpu_s"], l["iterations"],
-                              l["converged"], l["yplus_max"], l["motion"]]) + "\n")
 PY
+"$FSI_PYTHON" "$root/scripts/levels_error_csv.py" "$raw" "$FSI_VERIFY_DIR/gci.csv" \
+    "$FSI_VERIFY_DIR/error_vs_runtime.csv" "$np" "$flow-$scheme-$algorithm-cgrid$suffix" \
+    --extra yplus_max motion

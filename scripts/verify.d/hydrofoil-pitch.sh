@@ -125,16 +125,6 @@ with open(os.path.join(outDir, "levels.csv"), "w", newline="") as f:
         w.writerow([n] + list(r.values()) +
                    ["%.6g" % (float(r[q]) - float(r["rigid_" + q])) for q in
                     ("lift_N", "drag_N", "root_moment_z_Nm")])
-gci = {r["quantity"]: r for r in csv.DictReader(open(os.path.join(outDir, "gci.csv")))}
-with open(os.path.join(outDir, "error_vs_runtime.csv"), "w") as f:
-    f.write("level,size,cores,wall_s,quantity,value,reference,rel_error,cpu_s,iterations,"
-            "converged\n")
-    for q in ("lift_N", "drag_N", "root_moment_z_Nm"):
-        g = gci[q]
-        ref = float(g["extrapolated"]) if g["asymptotic_range"] == "yes" else float(g["fine"])
-        for n, r in zip(names, rows):
-            v = float(r[q])
-            f.write(",".join([n, r["cells"], np, r["wall_s"], q, "%.8g" % v, "%.8g" % ref,
-                              "%.6e" % (abs(v - ref) / abs(ref)), r["cpu_s"], r["iterations"],
-                              r["converged"]]) + "\n")
 PY
+"$FSI_PYTHON" "$root/scripts/levels_error_csv.py" "$FSI_VERIFY_DIR/levels.csv" "$FSI_VERIFY_DIR/gci.csv" \
+    "$FSI_VERIFY_DIR/error_vs_runtime.csv" "$np" "$model"
