@@ -88,7 +88,7 @@ if not m:
     sys.exit("error: hydrofoil-pitch: %s/log.pitch has no finished solve" % case)
 iterations, note, fx, fy, fz = m[-1]
 inMean = "in the mean" in note
-converged = "converged" in note or int(iterations) < 3000
+converged = "cap reached" not in note
 moments = sorted(glob.glob(case + "/postProcessing/forces/*/moment.dat"))
 row = [l for l in open(moments[-1]) if not l.startswith("#")][-1]
 mz = float(re.findall(r"\(([^)]*)\)", row)[0].split()[2])
