@@ -7,14 +7,21 @@ usage: levels_error_csv.py LEVELS_CSV GCI_CSV OUT_CSV CORES MODEL [--extra COLUM
 LEVELS_CSV: one row per level, coarse to fine, with the columns preset, cells, wall_s, cpu_s,
 iterations, converged and one column per quantity of GCI_CSV's rows of MODEL
 (scripts/history_gci.py --rigid: lift_N, drag_N, root_moment_z_Nm; the file may hold other
-models' rows too). Writes OUT_CSV with the standard columns
-level,size,cores,wall_s,quantity,value,reference,rel_error and then cpu_s, iterations,
-converged and the --extra columns of LEVELS_CSV. The reference of a quantity is its extrapolated
-value where gci.csv says the three levels are in the asymptotic range, else the finest level's
-value (whose rows then have rel_error 0).
+models' rows too). A LEVELS_CSV with a column model holds several studies: only its rows of
+MODEL are read. Writes OUT_CSV with the standard columns
+level,size,cores,wall_s,quantity,value,reference,rel_error and then model, cpu_s, iterations,
+converged and the --extra columns of LEVELS_CSV; rows of another model already in OUT_CSV (with
+the same columns) are kept, this model's are replaced. The reference of a quantity is its
+extrapolated value where gci.csv says the three levels are in the asymptotic range, else the
+finest level's value (whose rows then have rel_error 0).
 """
 import csv
+import os
 import sys
+
+
+def fail(message):
+    sys.exit("error: levels_error_csv.py: " + message)
 
 
 def main(argv):
@@ -22,21 +29,35 @@ def main(argv):
         sys.exit(__doc__.strip().splitlines()[2])
     levelsCsv, gciCsv, out, cores, model = argv[1:6]
     extra = argv[7:]
-    levels = list(csv.DictReader(open(levelsCsv)))
+    levels = [l for l in csv.DictReader(open(levelsCsv)) if l.get("model", model) == model]
+    if len(levels) != 3:
+        fail("%s has %d levels of model %s (three needed)" % (levelsCsv, len(levels), model))
     gci = [g for g in csv.DictReader(open(gciCsv)) if g["model"] == model]
     if not gci:
-        sys.exit("error: levels_error_csv.py: %s has no rows of model %s" % (gciCsv, model))
-    with open(out, "w") as f:
-        f.write(",".join(["level", "size", "cores", "wall_s", "quantity", "value", "reference",
-                          "rel_error", "cpu_s", "iterations", "converged"] + extra) + "\n")
-        for g in gci:
-            q = g["quantity"]
-            ref = float(g["extrapolated"]) if g["asymptotic_range"] == "yes" else float(g["fine"])
-            for l in levels:
-                v = float(l[q])
-                f.write(",".join([l["preset"], l["cells"], cores, l["wall_s"], q, "%.8g" % v,
-                                  "%.8g" % ref, "%.6e" % (abs(v - ref) / abs(ref)), l["cpu_s"],
-                                  l["iterations"], l["converged"]] + [l[c] for c in extra]) + "\n")
+        fail("%s has no rows of model %s" % (gciCsv, model))
+    columns = ["level", "size", "cores", "wall_s", "quantity", "value", "reference", "rel_error",
+               "model", "cpu_s", "iterations", "converged"] + extra
+    kept = []
+    if os.path.exists(out):
+        with open(out, newline="") as f:
+            reader = csv.DictReader(f)
+            if reader.fieldnames == columns:
+                kept = [r for r in reader if r["model"] != model]
+    rows = []
+    for g in gci:
+        q = g["quantity"]
+        ref = float(g["extrapolated"]) if g["asymptotic_range"] == "yes" else float(g["fine"])
+        for l in levels:
+            v = float(l[q])
+            rows.append(dict(zip(columns, [l["preset"], l["cells"], cores, l["wall_s"], q, "%.8g" % v,
+                                           "%.8g" % ref, "%.6e" % (abs(v - ref) / abs(ref)), model,
+                                           l["cpu_s"], l["iterations"], l["converged"]]
+                                 + [l[c] for c in extra])))
+    with open(out + ".tmp", "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=columns, lineterminator="\n")
+        w.writeheader()
+        w.writerows(kept + rows)
+    os.replace(out + ".tmp", out)
 
 
 if __name__ == "__main__":

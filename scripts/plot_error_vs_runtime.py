@@ -3,7 +3,8 @@
 
 usage: plot_error_vs_runtime.py CSV PNG [TITLE]
 CSV columns: level,size,cores,wall_s,quantity,value,reference,rel_error (further columns are
-ignored). Rows with rel_error exactly 0 (a level that is its own reference) are not plotted.
+ignored, except model: a file with several models draws one line per quantity and model).
+Rows with rel_error exactly 0 (a level that is its own reference) are not plotted.
 """
 import csv
 import sys
@@ -22,13 +23,15 @@ def main():
     series = {}
     skipped = set()
     with open(src, newline="") as f:
-        for row in csv.DictReader(f):
-            q = row["quantity"]
-            if float(row["rel_error"]) == 0.0:
-                skipped.add(row["level"])
-                continue
-            series.setdefault(q, []).append(
-                (float(row["wall_s"]), abs(float(row["rel_error"])), row["level"], row["size"]))
+        rows = list(csv.DictReader(f))
+    models = sorted({row.get("model", "") for row in rows})
+    for row in rows:
+        tag = f" [{row['model']}]" if len(models) > 1 else ""
+        if float(row["rel_error"]) == 0.0:
+            skipped.add(row["level"] + tag)
+            continue
+        series.setdefault(row["quantity"] + tag, []).append(
+            (float(row["wall_s"]), abs(float(row["rel_error"])), row["level"], row["size"]))
     if not series:
         sys.exit(f"error: {src} has no rows")
     fig, ax = plt.subplots(figsize=(6.4, 4.4))
@@ -45,7 +48,7 @@ def main():
         ax.text(0.01, 0.01, "own reference, not shown: " + ", ".join(sorted(skipped)),
                 transform=ax.transAxes, fontsize=7)
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend()
+    ax.legend(fontsize=7 if len(models) > 1 else None)
     fig.tight_layout()
     fig.savefig(png, dpi=120)
 

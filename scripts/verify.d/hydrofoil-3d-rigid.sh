@@ -14,7 +14,9 @@
 # the rigid solve); reference = the extrapolated value where the three levels are in the
 # asymptotic range, else the finest level's value (its rows then have rel_error 0); extra
 # columns cpu_s, iterations, converged, yplus_max, motion.
-# levels.csv: every level's blcheck line as columns.
+# levels.csv: every level's blcheck line as columns, after a column model.
+# gci.csv, levels.csv and error_vs_runtime.csv hold one block of rows per model
+# (flow-scheme-algorithm-cgrid[-slip]): a run replaces its own model's rows and keeps the others'.
 # Cost on 2 cores: coarse ~9 min, medium ~1 h at its cap, fine several hours (~2 s per
 # iteration). State 2026-12-03: not completed (README).
 # Environment:
@@ -57,6 +59,7 @@ reuse=${H3D_REUSE:-0}
 rootWall=${H3D_ROOT_WALL:-wall}
 case "$rootWall" in wall) suffix="" ;; slip) suffix=-slip ;; *) echo "error: hydrofoil-3d-rigid: H3D_ROOT_WALL='$rootWall' must be wall or slip" >&2; exit 2 ;; esac
 band=${H3D_BAND:-1e-3}
+model=$flow-$scheme-$algorithm-cgrid$suffix
 np=2
 set -- $levels
 [ $# = 3 ] || { echo "error: hydrofoil-3d-rigid: H3D_LEVELS='$levels' must name three presets, coarse to fine" >&2; exit 2; }
@@ -87,19 +90,27 @@ for level in $levels; do
     folders+=("$r") previous=$r
 done
 
-"$FSI_PYTHON" "$root/scripts/history_gci.py" --rigid --model "$flow-$scheme-$algorithm-cgrid$suffix" \
+"$FSI_PYTHON" "$root/scripts/history_gci.py" --rigid --model "$model" \
     --out "$FSI_VERIFY_DIR/gci.csv" --table "${folders[@]}"
 
-"$FSI_PYTHON" - "$raw.tmp" "$raw" <<'PY'
+"$FSI_PYTHON" - "$raw.tmp" "$raw" "$model" <<'PY'
 import csv, os, sys
-rawIn, rawOut = sys.argv[1:3]
-lines = [dict(kv.split("=", 1) for kv in l.split()[1:]) for l in open(rawIn) if l.strip()]
+rawIn, rawOut, model = sys.argv[1:4]
+lines = [dict([("model", model)] + [kv.split("=", 1) for kv in l.split()[1:]])
+         for l in open(rawIn) if l.strip()]
+columns = list(lines[0].keys())
+kept = []
+if os.path.exists(rawOut):
+    with open(rawOut, newline="") as f:
+        reader = csv.DictReader(f)
+        if reader.fieldnames == columns:
+            kept = [r for r in reader if r["model"] != model]
 with open(rawOut, "w", newline="") as f:
-    w = csv.DictWriter(f, fieldnames=list(lines[0].keys()))
+    w = csv.DictWriter(f, fieldnames=columns, lineterminator="\n")
     w.writeheader()
-    w.writerows(lines)
+    w.writerows(kept + lines)
 os.remove(rawIn)
 PY
 "$FSI_PYTHON" "$root/scripts/levels_error_csv.py" "$raw" "$FSI_VERIFY_DIR/gci.csv" \
-    "$FSI_VERIFY_DIR/error_vs_runtime.csv" "$np" "$flow-$scheme-$algorithm-cgrid$suffix" \
+    "$FSI_VERIFY_DIR/error_vs_runtime.csv" "$np" "$model" \
     --extra yplus_max motion

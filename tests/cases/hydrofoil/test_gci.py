@@ -209,5 +209,51 @@ class SteadyGciTest(unittest.TestCase):
             self.assertIn("results/baseline/history.csv", r.stderr)
 
 
+class LevelsErrorCsvTest(unittest.TestCase):
+    """scripts/levels_error_csv.py: one model's levels against its gci.csv reference, the rows of
+    other models kept in levels.csv and error_vs_runtime.csv."""
+
+    def test_reference_and_merge(self):
+        import csv
+        import subprocess
+        import tempfile
+        script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..",
+                              "scripts", "levels_error_csv.py")
+        with tempfile.TemporaryDirectory() as root:
+            levels, gciCsv, out = (os.path.join(root, n) for n in ("levels.csv", "gci.csv", "evr.csv"))
+            with open(levels, "w") as f:
+                f.write("model,preset,cells,iterations,converged,lift_N,cpu_s,wall_s,yplus_max\n")
+                for m, lifts in (("first", (2.2, 2.1, 2.0)), ("second", (1.75, 1.78, 1.80))):
+                    for p, c, lift in zip(("coarse", "medium", "fine"), (1, 2, 4), lifts):
+                        f.write("%s,%s,%d,500,1,%g,%d,%d,0.9\n" % (m, p, c, lift, 10 * c, 5 * c))
+            with open(gciCsv, "w") as f:
+                f.write("quantity,model,extrapolated,fine,asymptotic_range\n"
+                        "lift_N,first,1.9,2.0,yes\nlift_N,second,1.85,1.80,no\n")
+            for m in ("first", "second", "first"):  # a rerun replaces its own rows only
+                subprocess.run([sys.executable, script, levels, gciCsv, out, "2", m,
+                                "--extra", "yplus_max"], check=True)
+            with open(out) as f:
+                rows = list(csv.DictReader(f))
+            self.assertEqual(len(rows), 6)
+            self.assertEqual([r["model"] for r in rows], ["second"] * 3 + ["first"] * 3)
+            first = {r["level"]: r for r in rows if r["model"] == "first"}
+            # asymptotic: the extrapolated value is the reference
+            self.assertAlmostEqual(float(first["coarse"]["reference"]), 1.9, places=12)
+            self.assertAlmostEqual(float(first["coarse"]["rel_error"]), 0.3 / 1.9, places=6)
+            self.assertEqual(first["fine"]["wall_s"], "20")
+            self.assertEqual(first["fine"]["yplus_max"], "0.9")
+            # not asymptotic: the finest level is the reference and its own error is 0
+            second = {r["level"]: r for r in rows if r["model"] == "second"}
+            self.assertEqual(float(second["fine"]["rel_error"]), 0.0)
+            self.assertAlmostEqual(float(second["coarse"]["rel_error"]), 0.05 / 1.8, places=6)
+            # a model without gci rows: one-line error, exit 1, the output untouched
+            r = subprocess.run([sys.executable, script, levels, gciCsv, out, "2", "third"],
+                               capture_output=True, text=True)
+            self.assertEqual(r.returncode, 1)
+            self.assertIn("levels of model third", r.stderr)
+            with open(out) as f:
+                self.assertEqual(len(list(csv.DictReader(f))), 6)
+
+
 if __name__ == "__main__":
     unittest.main()
