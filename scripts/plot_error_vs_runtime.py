@@ -44,12 +44,11 @@ def main():
     ax.set_xlabel("wall time [s]")
     ax.set_ylabel("|relative error|")
     ax.set_title(f"{title}: error against run time")
-    if skipped:
-        ax.text(0.01, 0.01, "own reference, not shown: " + ", ".join(sorted(skipped)),
-                transform=ax.transAxes, fontsize=7)
+    if skipped:  # below the axes, clear of the legend
+        fig.text(0.01, 0.01, "own reference, not shown: " + ", ".join(sorted(skipped)), fontsize=7)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=7 if len(models) > 1 else None)
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0.03 if skipped else 0, 1, 1))
     fig.savefig(png, dpi=120)
 
 

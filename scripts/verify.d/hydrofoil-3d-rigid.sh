@@ -17,8 +17,9 @@
 # levels.csv: every level's blcheck line as columns, after a column model.
 # gci.csv, levels.csv and error_vs_runtime.csv hold one block of rows per model
 # (flow-scheme-algorithm-cgrid[-slip]): a run replaces its own model's rows and keeps the others'.
-# Cost on 2 cores: coarse ~9 min, medium ~1 h at its cap, fine several hours (~2 s per
-# iteration). State 2026-12-03: not completed (README).
+# Cost alone on 2 cores (2026-12-05): first order 30 min (500-600 iterations per level),
+# second order with the slip root wall 47 min (coarse from rest 1 100, medium and fine 800);
+# the fine level ~1.6 s per iteration. State: verification/hydrofoil-3d-rigid/README.md.
 # Environment:
 #   H3D_LEVELS    presets, coarse to fine (default "coarse medium fine"; three needed)
 #   H3D_FLOW      flow model (default turbulent: k-omega SST; see the README's flow models)
