@@ -112,6 +112,10 @@
 #                                           (scripts/fsi-restart-fluid + --restart), a run that
 #                                           never started starts; logs of earlier parts are kept
 #                                           as log.<run>.partN
+#   --check-only                            validate the options (and the --mesh-from /
+#                                           --init-from folders) and exit: 0, or 2 with the
+#                                           one-line error; writes nothing (scripts/run calls
+#                                           it before it makes the run folder)
 # Writes results/: history.csv (viscoelastic, one row per level), baseline/, relaxed/ and visco/
 # (solid-app outputs: coupling.csv, history.csv, interface/, solid_*.vtu + solid.pvd), summary.csv and the
 # PNG plots; the fluid fields of accepted levels are in fluid-*/ (OpenFOAM time folders).
@@ -119,7 +123,7 @@ set -euo pipefail
 : "${FSI_ROOT:?run through ./scripts/run cases/hydrofoil (FSI_ROOT unset)}"
 source "$FSI_ROOT/scripts/env.sh"
 
-preset=coarse material=both npf=2 nps=2 launch=mpmd tc=0.12 cli=0.5 end="" timeout=900 meshFrom="" restart=0
+preset=coarse material=both npf=2 nps=2 launch=mpmd tc=0.12 cli=0.5 end="" timeout=900 meshFrom="" restart=0 checkOnly=0
 flow="" scheme=upwind rootWall=wall algorithm="" fluidMesh="" initFrom="" band="" maxFluidIt="" fluidTol="" couplingTol="" bandWindow="" bandMean="" bandRef="" oscWindow="" wsFlux="" wsMaxCoef="" mapSmoothing=""
 die() { echo "error: hydrofoil/run.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
@@ -152,6 +156,7 @@ while [ $# -gt 0 ]; do
     --max-fluid-iterations) [ $# -ge 2 ] || die "--max-fluid-iterations needs a value"; maxFluidIt=$2; shift 2 ;;
     --mapping-smoothing) [ $# -ge 2 ] || die "--mapping-smoothing needs a radius in m"; mapSmoothing=$2; shift 2 ;;
     --restart) restart=1; shift ;;
+    --check-only) checkOnly=1; shift ;;
     -h|--help) sed -n '3,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
     *) die "unknown option '$1' (see --help)" ;;
   esac
@@ -224,7 +229,11 @@ fi
 if [ -n "$initFrom" ]; then
   [ -d "$initFrom/constant/polyMesh" ] || die "--init-from $initFrom: not an OpenFOAM case (no constant/polyMesh)"
   initFrom=$(cd "$initFrom" && pwd)
+  initTime=$(foamListTimes -case "$initFrom" -latestTime 2> /dev/null | tail -n 1)
+  [ -n "$initTime" ] && [ -f "$initFrom/$initTime/U" ] ||
+      die "--init-from $initFrom: no solved (reconstructed) time folder with U (a decomposed case: reconstructPar -latestTime there first)"
 fi
+[ "$checkOnly" = 0 ] || exit 0
 command -v fluid-app >/dev/null && command -v solid-app >/dev/null || die "fluid-app/solid-app not on PATH (build first)"
 
 run=$PWD

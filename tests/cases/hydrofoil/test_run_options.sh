@@ -6,8 +6,9 @@
 # --band-window, --oscillation-window, --fluid-tolerance, --coupling-tolerance, --warm-start-flux,
 # --mapping-smoothing, --max-fluid-iterations, --fluid-mesh, --algorithm and --root-wall (and a --fluid-mesh
 # that contradicts the mesh of --mesh-from) before it writes anything:
-# exit 2, one line on stderr naming the option, no mesh/ or results/ in the run folder. Needs
-# FSI_ROOT (the repository); no OpenFOAM run, no MPI.
+# exit 2, one line on stderr naming the option, no mesh/ or results/ in the run folder; so is an
+# --init-from case without a reconstructed solved time. `run.sh --check-only` exits 0 on valid
+# options and writes nothing. Needs FSI_ROOT (the repository); no OpenFOAM run, no MPI.
 # Also: tools/meshModel.sh names the default model of each mesh and preset, and
 # `scripts/run cases/hydrofoil --help` prints run.sh's options and exits 0 without setup, build
 # or a run folder.
@@ -58,6 +59,23 @@ fake=$work/fake-snappy-run
 rm -rf "$fake"; mkdir -p "$fake/mesh"
 echo "hydrofoil meshes (2026-12-05T00:00:00Z): preset=coarse tc=0.12 cli=0.5 meanline=a08 fluid-mesh=snappy" > "$fake/mesh/mesh-summary.txt"
 check --fluid-mesh cgrid --mesh-from "$fake"
+# --init-from a case without a reconstructed solved time (decomposed only): refused up front
+decomposed=$work/decomposed-case
+rm -rf "$decomposed"; mkdir -p "$decomposed/constant/polyMesh" "$decomposed/processor0/900"
+check --init-from "$decomposed"
+# --check-only: valid options exit 0 and write nothing; a bad one is refused as without it
+dir=$work/run
+rm -rf "$dir"; mkdir -p "$dir"; cp -r "$FSI_ROOT/cases/hydrofoil/." "$dir/"
+before=$(cd "$dir" && find . | sort | md5sum)
+if ! (cd "$dir" && ./run.sh --check-only --material baseline --scheme linearUpwind --root-wall slip \
+        --oscillation-window 20 > out.txt 2> err.txt); then
+    echo "FAIL: run.sh --check-only with valid options: non-zero exit"; cat "$dir/err.txt"; fail=1
+elif [ "$(cd "$dir" && rm out.txt err.txt && find . | sort | md5sum)" != "$before" ]; then
+    echo "FAIL: run.sh --check-only wrote into the case folder"; fail=1
+else
+    echo "ok: run.sh --check-only with valid options: exit 0, nothing written"
+fi
+check --oscillation-window 2 --check-only
 # tools/meshModel.sh: the model that run.sh defaults to for each mesh (README, "The case default")
 model() {   # model EXPECTED ARGS...
   local got; got=$("$FSI_ROOT/cases/hydrofoil/tools/meshModel.sh" "${@:2}" 2>&1)
