@@ -24,6 +24,23 @@ def fail(message):
     sys.exit("error: levels_error_csv.py: " + message)
 
 
+def write_model_rows(path, columns, model, rows):
+    """Write rows (dicts with the given columns, one of them "model") to the CSV at path,
+    keeping the rows of other models already there (same columns; else they are dropped) and
+    replacing this model's. Written to path.tmp and renamed: never half-written."""
+    kept = []
+    if os.path.exists(path):
+        with open(path, newline="") as f:
+            reader = csv.DictReader(f)
+            if reader.fieldnames == columns:
+                kept = [r for r in reader if r["model"] != model]
+    with open(path + ".tmp", "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=columns, lineterminator="\n")
+        w.writeheader()
+        w.writerows(kept + rows)
+    os.replace(path + ".tmp", path)
+
+
 def main(argv):
     if len(argv) < 6 or (len(argv) > 6 and argv[6] != "--extra"):
         sys.exit(__doc__.strip().splitlines()[2])
@@ -37,12 +54,6 @@ def main(argv):
         fail("%s has no rows of model %s" % (gciCsv, model))
     columns = ["level", "size", "cores", "wall_s", "quantity", "value", "reference", "rel_error",
                "model", "cpu_s", "iterations", "converged"] + extra
-    kept = []
-    if os.path.exists(out):
-        with open(out, newline="") as f:
-            reader = csv.DictReader(f)
-            if reader.fieldnames == columns:
-                kept = [r for r in reader if r["model"] != model]
     rows = []
     for g in gci:
         q = g["quantity"]
@@ -53,11 +64,7 @@ def main(argv):
                                            "%.8g" % ref, "%.6e" % (abs(v - ref) / abs(ref)), model,
                                            l["cpu_s"], l["iterations"], l["converged"]]
                                  + [l[c] for c in extra])))
-    with open(out + ".tmp", "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=columns, lineterminator="\n")
-        w.writeheader()
-        w.writerows(kept + rows)
-    os.replace(out + ".tmp", out)
+    write_model_rows(out, columns, model, rows)
 
 
 if __name__ == "__main__":

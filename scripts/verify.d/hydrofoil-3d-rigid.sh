@@ -67,8 +67,8 @@ set -- $levels
 mkdir -p "$runs"
 
 folders=() previous=""
-raw=$FSI_VERIFY_DIR/levels.csv
-: > "$raw.tmp"
+raw=$FSI_VERIFY_DIR/levels.csv lines=$FSI_VERIFY_DIR/levels.blcheck.tmp
+: > "$lines"
 for level in $levels; do
     r=$runs/$flow-$scheme-$algorithm$suffix-$level
     if [ "$reuse" = 1 ] && [ -f "$r/rigid/rigid.csv" ] && [ -f "$r/blcheck.txt" ]; then
@@ -86,7 +86,7 @@ for level in $levels; do
         grep '^blcheck:' "$r.log" > "$r/blcheck.txt" ||
             { tail -5 "$r.log" >&2; echo "error: hydrofoil-3d-rigid: $level failed (see $r.log)" >&2; exit 1; }
     fi
-    cat "$r/blcheck.txt" >> "$raw.tmp"
+    cat "$r/blcheck.txt" >> "$lines"
     tail -n 1 "$r/blcheck.txt"
     folders+=("$r") previous=$r
 done
@@ -94,22 +94,14 @@ done
 "$FSI_PYTHON" "$root/scripts/history_gci.py" --rigid --model "$model" \
     --out "$FSI_VERIFY_DIR/gci.csv" --table "${folders[@]}"
 
-"$FSI_PYTHON" - "$raw.tmp" "$raw" "$model" <<'PY'
-import csv, os, sys
-rawIn, rawOut, model = sys.argv[1:4]
+"$FSI_PYTHON" - "$lines" "$raw" "$model" "$root/scripts" <<'PY'
+import os, sys
+rawIn, rawOut, model, scripts = sys.argv[1:5]
+sys.path.insert(0, scripts)
+from levels_error_csv import write_model_rows
 lines = [dict([("model", model)] + [kv.split("=", 1) for kv in l.split()[1:]])
          for l in open(rawIn) if l.strip()]
-columns = list(lines[0].keys())
-kept = []
-if os.path.exists(rawOut):
-    with open(rawOut, newline="") as f:
-        reader = csv.DictReader(f)
-        if reader.fieldnames == columns:
-            kept = [r for r in reader if r["model"] != model]
-with open(rawOut, "w", newline="") as f:
-    w = csv.DictWriter(f, fieldnames=columns, lineterminator="\n")
-    w.writeheader()
-    w.writerows(kept + lines)
+write_model_rows(rawOut, list(lines[0].keys()), model, lines)
 os.remove(rawIn)
 PY
 "$FSI_PYTHON" "$root/scripts/levels_error_csv.py" "$raw" "$FSI_VERIFY_DIR/gci.csv" \
