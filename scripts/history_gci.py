@@ -42,6 +42,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import gci  # noqa: E402
+from model_csv import write_model_rows  # noqa: E402
 
 TIMES = (0.0, 50.0, 360.0, 3600.0)
 RIGID_QUANTITIES = ("lift_N", "drag_N", "root_moment_z_Nm")
@@ -199,17 +200,8 @@ def main(argv):
             "asymptotic_range": "yes" if asymptotic else "no"})
     columns = list(rows[0].keys())
     if out:
-        kept = []
-        if os.path.isfile(out):
-            with open(out, newline="") as f:
-                kept = [r for r in csv.DictReader(f) if r.get("model") != model]
-        with open(out, "w", newline="") as f:
-            w = csv.DictWriter(f, fieldnames=columns, restval="", extrasaction="ignore")
-            w.writeheader()
-            for r in kept:
-                w.writerow(r)
-            for r in rows:
-                w.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in r.items()})
+        write_model_rows(out, columns, model, [{k: (f"{v:.6g}" if isinstance(v, float) else v)
+                                                for k, v in r.items()} for r in rows])
     if table or not out:
         print("| quantity | coarse | medium | fine | coarse vs fine | medium vs fine | "
               "convergence | order | GCI_fine |")

@@ -10,35 +10,19 @@ iterations, converged and one column per quantity of GCI_CSV's rows of MODEL
 models' rows too). A LEVELS_CSV with a column model holds several studies: only its rows of
 MODEL are read. Writes OUT_CSV with the standard columns
 level,size,cores,wall_s,quantity,value,reference,rel_error and then model, cpu_s, iterations,
-converged and the --extra columns of LEVELS_CSV; rows of another model already in OUT_CSV (with
-the same columns) are kept, this model's are replaced. The reference of a quantity is its
+converged and the --extra columns of LEVELS_CSV; rows of another model already in OUT_CSV are
+kept, this model's are replaced (model_csv.write_model_rows). The reference of a quantity is its
 extrapolated value where gci.csv says the three levels are in the asymptotic range, else the
 finest level's value (whose rows then have rel_error 0).
 """
 import csv
-import os
 import sys
+
+from model_csv import write_model_rows
 
 
 def fail(message):
     sys.exit("error: levels_error_csv.py: " + message)
-
-
-def write_model_rows(path, columns, model, rows):
-    """Write rows (dicts with the given columns, one of them "model") to the CSV at path,
-    keeping the rows of other models already there (same columns; else they are dropped) and
-    replacing this model's. Written to path.tmp and renamed: never half-written."""
-    kept = []
-    if os.path.exists(path):
-        with open(path, newline="") as f:
-            reader = csv.DictReader(f)
-            if reader.fieldnames == columns:
-                kept = [r for r in reader if r["model"] != model]
-    with open(path + ".tmp", "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=columns, lineterminator="\n")
-        w.writeheader()
-        w.writerows(kept + rows)
-    os.replace(path + ".tmp", path)
 
 
 def main(argv):

@@ -229,9 +229,8 @@ fi
 if [ -n "$initFrom" ]; then
   [ -d "$initFrom/constant/polyMesh" ] || die "--init-from $initFrom: not an OpenFOAM case (no constant/polyMesh)"
   initFrom=$(cd "$initFrom" && pwd)
-  initTime=$(foamListTimes -case "$initFrom" -latestTime 2> /dev/null | tail -n 1)
-  [ -n "$initTime" ] && [ -f "$initFrom/$initTime/U" ] ||
-      die "--init-from $initFrom: no solved (reconstructed) time folder with U (a decomposed case: reconstructPar -latestTime there first)"
+  why=$("$FSI_ROOT/cases/hydrofoil/tools/mapInitialFields.sh" --check "$initFrom" 2>&1) ||
+      die "--init-from: ${why#error: mapInitialFields.sh: }"
 fi
 [ "$checkOnly" = 0 ] || exit 0
 command -v fluid-app >/dev/null && command -v solid-app >/dev/null || die "fluid-app/solid-app not on PATH (build first)"

@@ -100,7 +100,7 @@ done
 import os, sys
 rawIn, rawOut, model, scripts = sys.argv[1:5]
 sys.path.insert(0, scripts)
-from levels_error_csv import write_model_rows
+from model_csv import write_model_rows
 lines = [dict([("model", model)] + [kv.split("=", 1) for kv in l.split()[1:]])
          for l in open(rawIn) if l.strip()]
 write_model_rows(rawOut, list(lines[0].keys()), model, lines)

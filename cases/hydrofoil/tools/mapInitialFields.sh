@@ -4,6 +4,8 @@
 # domain (grid sequencing: start a level from the next coarser level's converged flow).
 #
 #   cases/hydrofoil/tools/mapInitialFields.sh DEST_CASE SOURCE_CASE
+#   cases/hydrofoil/tools/mapInitialFields.sh --check SOURCE_CASE   only validate the source
+#                                                                   (run.sh, before it writes)
 #
 # Maps the solved fields (U, p and the turbulence fields k, omega, nut, ReThetat, gammaInt that
 # SOURCE_CASE's latest time folder has) onto DEST_CASE's start time (an undecomposed case: run
@@ -14,14 +16,15 @@
 # one-line error naming the folder when there is nothing to map or mapFields fails.
 set -euo pipefail
 die() { echo "error: mapInitialFields.sh: $*" >&2; exit 2; }
-[ $# = 2 ] || die "usage: mapInitialFields.sh DEST_CASE SOURCE_CASE"
+[ $# = 2 ] || die "usage: mapInitialFields.sh DEST_CASE SOURCE_CASE (or --check SOURCE_CASE)"
 dest=$1
-[ -d "$dest/constant/polyMesh" ] || die "'$dest' is not a case with a mesh (constant/polyMesh)"
+[ "$dest" = --check ] || [ -d "$dest/constant/polyMesh" ] || die "'$dest' is not a case with a mesh (constant/polyMesh)"
 [ -d "$2/constant" ] && [ -d "$2/system" ] || die "'$2' is not a case (constant/, system/)"
 srcCase="$(cd "$2" && pwd)"
 srcTime=$(foamListTimes -case "$srcCase" -latestTime 2>/dev/null | tail -1)
 [ -n "$srcTime" ] && [ -f "$srcCase/$srcTime/U" ] ||
-    die "'$srcCase' has no solved (reconstructed) time folder with U; run it to the end first"
+    die "'$srcCase' has no solved (reconstructed) time folder with U; run it to the end first (a decomposed case: reconstructPar -latestTime there)"
+[ "$dest" != --check ] || exit 0
 # a source with the solved fields only: mapFields fails on the written cell-centre and y+ fields
 src="$(mktemp -d "${TMPDIR:-/tmp}/mapSource.XXXXXX")"
 trap 'rm -rf "$src"' EXIT

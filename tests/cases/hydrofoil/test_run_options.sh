@@ -61,7 +61,7 @@ echo "hydrofoil meshes (2026-12-05T00:00:00Z): preset=coarse tc=0.12 cli=0.5 mea
 check --fluid-mesh cgrid --mesh-from "$fake"
 # --init-from a case without a reconstructed solved time (decomposed only): refused up front
 decomposed=$work/decomposed-case
-rm -rf "$decomposed"; mkdir -p "$decomposed/constant/polyMesh" "$decomposed/processor0/900"
+rm -rf "$decomposed"; mkdir -p "$decomposed/constant/polyMesh" "$decomposed/system" "$decomposed/processor0/900"
 check --init-from "$decomposed"
 # --check-only: valid options exit 0 and write nothing; a bad one is refused as without it
 dir=$work/run
