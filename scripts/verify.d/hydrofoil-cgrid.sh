@@ -2,36 +2,58 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Coupled elastic t = 0 state of the hydrofoil on the boundary-layer (cgrid) presets coarse /
 # medium / fine: the study of scripts/verify.d/hydrofoil.sh (run.sh --material baseline, fluid 2
-# ranks + solid 1 rank, the preset's Tet10 foil) with k-omega SST, first-order upwind and the
-# rigid study's pressure-velocity algorithm (H3D_ALGORITHM, default simplec, the case's; simple:
-# classic SIMPLE, the study of 2026-12-04 on the older meshes), on the same systematic cgrid
-# refinement. Each level's fluid starts from that study's converged rigid flow
-# of the same preset (run.sh --init-from): level 0's first solve then only confirms the rigid
-# state, and a level costs its coupling iterations instead of a solve from rest (thousands of
-# classic SIMPLE iterations on medium and fine). Run scripts/verify hydrofoil-3d-rigid first.
-# Writes, besides hydrofoil.sh's levels.csv / error_vs_runtime.csv / richardson.csv here:
-# the observed order, extrapolated value and GCI_fine of the tip AOA, tip deflection, lift and
-# drag (scripts/history_gci.py --steady) into this folder's gci.csv and into
-# verification/hydrofoil/gci.csv (model turbulent-upwind-ALGORITHM-cgrid-baseline; that file's
-# rows of other studies are kept).
-# Environment: HYDROFOIL_LEVELS, HYDROFOIL_RUNS, HYDROFOIL_REUSE, HYDROFOIL_TIMEOUT as
-# hydrofoil.sh; H3D_RUNS: the rigid study's run folders (default
-# verification/hydrofoil-3d-rigid/runs, that study's default); H3D_ALGORITHM as that study.
+# ranks + solid 1 rank, the preset's Tet10 foil) with k-omega SST and the rigid study's flow
+# model (scripts/verify.d/hydrofoil-3d-rigid.sh: H3D_SCHEME, H3D_ALGORITHM, H3D_ROOT_WALL), on
+# the same systematic cgrid refinement. Each level's fluid starts from that study's converged
+# rigid flow of the same preset and model (run.sh --init-from): level 0's first solve then only
+# confirms the rigid state, and a level costs its coupling iterations instead of a solve from
+# rest. Run scripts/verify hydrofoil-3d-rigid with the same H3D_* first.
+# The model is turbulent-SCHEME-ALGORITHM-cgrid[-slip]-baseline. Its runs and hydrofoil.sh's
+# own files go to this folder's MODEL/ (outside git); this folder's levels.csv,
+# error_vs_runtime.csv and richardson.csv hold one block of rows per model (a leading `model`
+# column; a study replaces its own rows), and the observed order, extrapolated value and
+# GCI_fine of the tip AOA, tip deflection, lift and drag (scripts/history_gci.py --steady) go
+# to this folder's gci.csv and verification/hydrofoil/gci.csv (rows of other models kept).
+# Environment: HYDROFOIL_LEVELS, HYDROFOIL_REUSE, HYDROFOIL_TIMEOUT as hydrofoil.sh;
+# HYDROFOIL_RUNS (default this folder's MODEL/); H3D_RUNS: the rigid study's run folders
+# (default verification/hydrofoil-3d-rigid/runs, that study's default);
+# H3D_SCHEME (upwind | linearUpwind), H3D_ALGORITHM (simplec | simple), H3D_ROOT_WALL
+# (wall | slip) as that study; HYDROFOIL_OSCILLATION_WINDOW as hydrofoil.sh, default 20 with
+# linearUpwind (the second-order coupled runs of cases/hydrofoil/README.md), unset otherwise.
 set -euo pipefail
 : "${FSI_VERIFY_DIR:?run through scripts/verify hydrofoil-cgrid}"
 root=${FSI_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}
 rigidRuns=${H3D_RUNS:-$root/verification/hydrofoil-3d-rigid/runs}
-algorithm=${H3D_ALGORITHM:-simplec}
+algorithm=${H3D_ALGORITHM:-simplec} scheme=${H3D_SCHEME:-upwind} rootWall=${H3D_ROOT_WALL:-wall}
 case "$algorithm" in simple|simplec) ;; *) echo "error: hydrofoil-cgrid: H3D_ALGORITHM='$algorithm' must be simple or simplec" >&2; exit 2 ;; esac
-export HYDROFOIL_FLUID_MESH=cgrid HYDROFOIL_FLOW=turbulent HYDROFOIL_SCHEME=upwind HYDROFOIL_ALGORITHM=$algorithm
-export HYDROFOIL_INIT_FROM=$rigidRuns/turbulent-upwind-$algorithm-LEVEL/rigid/case
-export HYDROFOIL_GCI_MODEL=turbulent-upwind-$algorithm-cgrid-baseline
-export HYDROFOIL_GCI_OUT=$FSI_VERIFY_DIR/gci.csv
-bash "$(dirname "$0")/hydrofoil.sh" "$@"
+case "$scheme" in upwind|linearUpwind) ;; *) echo "error: hydrofoil-cgrid: H3D_SCHEME='$scheme' must be upwind or linearUpwind" >&2; exit 2 ;; esac
+case "$rootWall" in wall) suffix="" ;; slip) suffix=-slip ;; *) echo "error: hydrofoil-cgrid: H3D_ROOT_WALL='$rootWall' must be wall or slip" >&2; exit 2 ;; esac
+model=turbulent-$scheme-$algorithm-cgrid$suffix-baseline
+[ "$scheme" != linearUpwind ] || export HYDROFOIL_OSCILLATION_WINDOW=${HYDROFOIL_OSCILLATION_WINDOW:-20}
+export HYDROFOIL_FLUID_MESH=cgrid HYDROFOIL_FLOW=turbulent HYDROFOIL_SCHEME=$scheme
+export HYDROFOIL_ALGORITHM=$algorithm HYDROFOIL_ROOT_WALL=$rootWall
+export HYDROFOIL_INIT_FROM=$rigidRuns/turbulent-$scheme-$algorithm$suffix-LEVEL/rigid/case
+export HYDROFOIL_GCI_MODEL=$model HYDROFOIL_GCI_OUT=$FSI_VERIFY_DIR/gci.csv
+study=$FSI_VERIFY_DIR
+mkdir -p "$study/$model"
+FSI_VERIFY_DIR=$study/$model bash "$(dirname "$0")/hydrofoil.sh" "$@"
 set -- ${HYDROFOIL_LEVELS:-coarse medium fine}
+runs=${HYDROFOIL_RUNS:-$study/$model}
+# this model's block of the study's shared files
+for f in levels.csv error_vs_runtime.csv richardson.csv; do
+  [ -f "$study/$model/$f" ] || continue
+  "$FSI_PYTHON" - "$study/$model/$f" "$study/$f" "$model" "$root/scripts" <<'PY'
+import csv, sys
+src, dst, model, scripts = sys.argv[1:5]
+sys.path.insert(0, scripts)
+from model_csv import write_model_rows
+with open(src, newline="") as f:
+    reader = csv.DictReader(f)
+    rows = [dict(r, model=model) for r in reader]
+    write_model_rows(dst, ["model"] + reader.fieldnames, model, rows)
+PY
+done
 if [ $# = 3 ]; then
-  "$FSI_PYTHON" "$root/scripts/history_gci.py" --steady --model "$HYDROFOIL_GCI_MODEL" \
-      --out "$root/verification/hydrofoil/gci.csv" \
-      "${HYDROFOIL_RUNS:-$FSI_VERIFY_DIR}/run-$1" "${HYDROFOIL_RUNS:-$FSI_VERIFY_DIR}/run-$2" \
-      "${HYDROFOIL_RUNS:-$FSI_VERIFY_DIR}/run-$3" > /dev/null
+  "$FSI_PYTHON" "$root/scripts/history_gci.py" --steady --model "$model" \
+      --out "$root/verification/hydrofoil/gci.csv" "$runs/run-$1" "$runs/run-$2" "$runs/run-$3" > /dev/null
 fi

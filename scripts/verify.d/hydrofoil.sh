@@ -26,6 +26,7 @@
 #   HYDROFOIL_FLUID_MESH snappy (default) | cgrid: mesh.sh --fluid-mesh (the boundary-layer mesh)
 #   HYDROFOIL_FLOW, HYDROFOIL_SCHEME, HYDROFOIL_ALGORITHM  run.sh --flow / --scheme / --algorithm
 #                      (defaults laminar, upwind and the case's SIMPLEC)
+#   HYDROFOIL_ROOT_WALL wall (default, the paper's tunnel) | slip: run.sh --root-wall
 #   HYDROFOIL_OSCILLATION_WINDOW  N: run.sh --oscillation-window N (honest coupled solves: no stop
 #                      at a turning point of the force; default unset, the case's off)
 #   HYDROFOIL_INIT_FROM  a path with LEVEL in it (e.g. .../turbulent-upwind-simple-LEVEL/rigid/case):
@@ -48,22 +49,24 @@ timeout=${HYDROFOIL_TIMEOUT:-3600}
 npf=2 nps=1
 fluidMesh=${HYDROFOIL_FLUID_MESH:-snappy}
 flow=${HYDROFOIL_FLOW:-laminar} scheme=${HYDROFOIL_SCHEME:-upwind} algorithm=${HYDROFOIL_ALGORITHM:-}
+rootWall=${HYDROFOIL_ROOT_WALL:-wall}
 initPattern=${HYDROFOIL_INIT_FROM:-}
 oscWindow=${HYDROFOIL_OSCILLATION_WINDOW:-}
 case "$fluidMesh" in snappy|cgrid) ;; *) echo "error: hydrofoil: HYDROFOIL_FLUID_MESH='$fluidMesh' must be snappy or cgrid" >&2; exit 2 ;; esac
-# HYDROFOIL_FLOW/SCHEME/ALGORITHM: setFlow.sh names a bad value in one line
-"$case_dir/tools/setFlow.sh" --check-only --flow "$flow" --scheme "$scheme" ${algorithm:+--algorithm "$algorithm"} || exit 2
-case "$oscWindow" in
-  "") ;;
-  *[!0-9]*) echo "error: hydrofoil: HYDROFOIL_OSCILLATION_WINDOW='$oscWindow' must be an integer in 3..1000 (about one period of the force's oscillation), or unset" >&2; exit 2 ;;
-  *) [ "$oscWindow" -ge 3 ] && [ "$oscWindow" -le 1000 ] ||
-       { echo "error: hydrofoil: HYDROFOIL_OSCILLATION_WINDOW='$oscWindow' must be an integer in 3..1000 (about one period of the force's oscillation), or unset" >&2; exit 2; } ;;
-esac
-if [ -n "$initPattern" ]; then
-  for level in $levels; do
-    [ -d "${initPattern//LEVEL/$level}/constant/polyMesh" ] || { echo "error: hydrofoil: HYDROFOIL_INIT_FROM: no OpenFOAM case ${initPattern//LEVEL/$level} for $level (run its rigid solve first, e.g. scripts/verify hydrofoil-3d-rigid)" >&2; exit 2; }
-  done
-fi
+# Every level's run options, before anything is meshed or run: run.sh --check-only names a bad
+# value (HYDROFOIL_FLOW/SCHEME/ALGORITHM/ROOT_WALL/OSCILLATION_WINDOW, a missing init case) in one line
+runOptions() { # LEVEL: the run.sh options of that level (without --mesh-from) into opts
+  opts=(--preset "$1" --material baseline --np-fluid "$npf" --np-solid "$nps" --timeout "$timeout"
+        --flow "$flow" --scheme "$scheme" --root-wall "$rootWall")
+  [ -z "$algorithm" ] || opts+=(--algorithm "$algorithm")
+  [ -z "$oscWindow" ] || opts+=(--oscillation-window "$oscWindow")
+  [ -z "$initPattern" ] || opts+=(--init-from "${initPattern//LEVEL/$1}")
+}
+for level in $levels; do
+  [ -z "$initPattern" ] || [ -d "${initPattern//LEVEL/$level}/constant/polyMesh" ] || { echo "error: hydrofoil: HYDROFOIL_INIT_FROM: no OpenFOAM case ${initPattern//LEVEL/$level} for $level (run its rigid solve first, e.g. scripts/verify hydrofoil-3d-rigid)" >&2; exit 2; }
+  runOptions "$level"
+  (cd "$case_dir" && ./run.sh --check-only --fluid-mesh "$fluidMesh" "${opts[@]}") || exit 2
+done
 csv=$FSI_VERIFY_DIR/error_vs_runtime.csv
 raw=$FSI_VERIFY_DIR/levels.csv
 mkdir -p "$runs"
@@ -87,10 +90,8 @@ for level in $levels; do
     rm -rf "$r"
     cp -r "$case_dir" "$r"
     cut -d' ' -f1 /proc/loadavg > "$r/load1"
-    { time (cd "$r" && ./run.sh --preset "$level" --material baseline --np-fluid "$npf" --np-solid "$nps" \
-        --timeout "$timeout" --mesh-from "$m" --flow "$flow" --scheme "$scheme" \
-        ${algorithm:+--algorithm "$algorithm"} ${oscWindow:+--oscillation-window "$oscWindow"} ${initPattern:+--init-from "${initPattern//LEVEL/$level}"} \
-        > log.run 2>&1); } 2> "$r/time.run" ||
+    runOptions "$level"
+    { time (cd "$r" && ./run.sh --mesh-from "$m" "${opts[@]}" > log.run 2>&1); } 2> "$r/time.run" ||
       { echo "error: hydrofoil $level run failed, see $r/log.run" >&2; tail -5 "$r/log.run" >&2; exit 1; }
   fi
   cells=$(sed -n 's/^fluid: cells \([0-9]*\).*/\1/p' "$m/mesh/mesh-summary.txt" | tail -n 1)
