@@ -58,7 +58,8 @@ struct Args
 {
     std::string config, mesh, schedule, interface, out = "/tmp/solid-iteration-bench";
     bool output = true, quiet = false;
-    double refactorDrift = -1.0; // < 0: the solver's default
+    double refactorDrift = -1.0; // < 0: the config's (default 0: never)
+    bool recycle = true;         // fe::ProblemDefinition::recycleSolutions
 };
 
 [[noreturn]] void usage(const std::string& what)
@@ -66,7 +67,7 @@ struct Args
     throw std::invalid_argument("solid-iteration-bench: " + what +
                                 "; usage: solid-iteration-bench --config FILE [--mesh FILE] "
                                 "[--schedule coupling.csv] [--interface DIR] [--out DIR] "
-                                "[--no-output] [--quiet]");
+                                "[--no-output] [--refactor-drift X] [--no-recycle] [--quiet]");
 }
 
 Args parse(int argc, char** argv)
@@ -95,6 +96,8 @@ Args parse(int argc, char** argv)
             a.refactorDrift = std::stod(next());
         else if (key == "--no-output")
             a.output = false;
+        else if (key == "--no-recycle")
+            a.recycle = false;
         else if (key == "--quiet")
             a.quiet = true;
         else
@@ -274,6 +277,7 @@ int run(const Args& args)
     fe::ProblemDefinition problem = setup::problemFromConfig(cfg);
     if (args.refactorDrift >= 0.0)
         problem.refactorShearDrift = args.refactorDrift;
+    problem.recycleSolutions = args.recycle;
     fe::StructuralSolver solid(MPI_COMM_WORLD, mesh, *law, problem);
     const auto [setupWall, setupCpu] = setupWatch.stop();
     const std::vector<double> xyz = solid.wettedNodeCoordinates();

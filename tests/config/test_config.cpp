@@ -208,7 +208,7 @@ TEST(SolidConfig, ListGeometricAndAdaptiveSchedules)
 
 TEST(SolidConfig, RefactorShearDrift)
 {
-    EXPECT_DOUBLE_EQ(SolidConfig::load(write(valid)).refactorShearDrift, 0.05); // default
+    EXPECT_DOUBLE_EQ(SolidConfig::load(write(valid)).refactorShearDrift, 0.0); // default: never
     const auto c = SolidConfig::load(
         write(std::string(valid) + "  linear_solver: {refactor_shear_drift: 0.2}\n"));
     EXPECT_DOUBLE_EQ(c.refactorShearDrift, 0.2);

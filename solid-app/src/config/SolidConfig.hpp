@@ -102,7 +102,7 @@ struct SolidConfig
     // defaults as documented in config/solid.example.yaml. symmetric and reuseFactorization are
     // set by fe::StructuralSolver.
     linalg::DirectSolverOptions linearSolver;
-    double refactorShearDrift = 0.05; // linear_solver.refactor_shear_drift (fe::ProblemDefinition)
+    double refactorShearDrift = 0.0; // linear_solver.refactor_shear_drift (fe::ProblemDefinition)
     LoadParameters loads;
     TimeParameters time;
     OutputParameters output;

@@ -441,6 +441,7 @@ bool StructuralSolver::linearTangentFromParts()
         values[k] = lambda * lambdaPart_[k] + mu * muPart_[k];
     linear_->setValues(std::move(values));
     muValues_ = mu;
+    lambdaValues_ = lambda;
     const double drift = problem_.refactorShearDrift;
     if (factorizationsSeen_ > 0 && drift > 0.0 && std::abs(mu - muFactorized_) > drift * mu)
         linear_->factorizeAtNextSolve();
@@ -670,10 +671,31 @@ bool StructuralSolver::newton(const std::vector<double>& fext, double factor,
                 if (equation_[dof] >= 0)
                     du[equation_[dof]] = R[dof];
         const double linearStart = MPI_Wtime();
+        // a linear problem on a stale factor: the part of R in the span of earlier solutions
+        // by projection (R is replicated), CG on the rest from rank 0's rhs
+        const bool recycle = linearProblem_ && linear_->cgOnStaleFactor();
+        std::vector<double> fromKept;
+        if (recycle)
+        {
+            std::vector<double> rhs(numFree_, 0.0);
+            for (int dof = 0; dof < numDofs(); ++dof)
+                if (equation_[dof] >= 0)
+                    rhs[equation_[dof]] = R[dof];
+            fromKept.assign(numFree_, 0.0);
+            projectOnSolves(rhs, fromKept);
+            if (rank_ == 0)
+                du = rhs;
+        }
         if (pendingResponse_ && !pendingResponse_->answered && linearProblem_)
             solveStepWithResponse(du, linearSolveAllowance(ref)); // the columns ride along
         else
             linear_->solveSummedRhs(du, linearSolveAllowance(ref));
+        if (recycle)
+        {
+            for (int eq = 0; eq < numFree_; ++eq)
+                du[eq] += fromKept[eq];
+            rememberSolve(du);
+        }
         linearSeconds_ += MPI_Wtime() - linearStart;
         // line search (energy form, Crisfield): find alpha with s(alpha) = du . R(u + alpha du)
         // small against s(0) = du . R(u) > 0; the residual NORM may grow on a good Newton step
@@ -790,10 +812,10 @@ bool StructuralSolver::linearUpdate(const std::vector<double>& fTarget, SolveRep
     const double linearStart = MPI_Wtime();
     // on a stale factor: the part of the rhs in the span of this level's earlier solves is
     // solved by projection, CG gets the rest (a current factor solves exactly in one phase)
-    const bool stale = linear_->factorIsStale();
+    const bool stale = linear_->cgOnStaleFactor();
     std::vector<double> du(numFree_, 0.0), remainder = rhs;
     if (stale)
-        projectOnLevelSolves(remainder, du);
+        projectOnSolves(remainder, du);
     std::vector<double> correction(numFree_, 0.0);
     if (rank_ == 0)
         correction = remainder;
@@ -802,7 +824,7 @@ bool StructuralSolver::linearUpdate(const std::vector<double>& fTarget, SolveRep
     for (int eq = 0; eq < numFree_; ++eq)
         du[eq] += correction[eq];
     if (stale)
-        rememberLevelSolve(du);
+        rememberSolve(du);
     linearSeconds_ += MPI_Wtime() - linearStart;
     std::vector<double> u = u_, fint;
     for (int dof = 0; dof < numDofs(); ++dof)
@@ -837,60 +859,128 @@ bool StructuralSolver::linearUpdate(const std::vector<double>& fTarget, SolveRep
     return true;
 }
 
-void StructuralSolver::rememberLevelSolve(std::vector<double> x)
+void StructuralSolver::partProduct(const std::vector<double>& part, const std::vector<double>& x,
+                                   std::vector<double>& y) const
 {
-    if (levelSolvesVersion_ != linear_->valuesVersion())
-    {
-        levelSolutions_.clear();
-        levelLoads_.clear();
-        levelSolvesVersion_ = linear_->valuesVersion();
-    }
-    std::vector<double> b; // K x, exactly (a solve's rhs is met only to its tolerance)
-    linear_->multiplyAll(x, b);
-    // K-orthonormalize against the kept pairs
-    const auto dot = [](const std::vector<double>& a, const std::vector<double>& c)
-    { return std::inner_product(a.begin(), a.end(), c.begin(), 0.0); };
-    const double start = std::sqrt(std::abs(dot(x, b)));
-    for (std::size_t j = 0; j < levelSolutions_.size(); ++j)
-    {
-        const double c = dot(levelSolutions_[j], b);
-        for (std::size_t i = 0; i < x.size(); ++i)
+    const auto& offsets = pattern_->csr.rowOffsets();
+    const auto& columns = pattern_->csr.columns();
+    y.assign(static_cast<std::size_t>(numFree_), 0.0);
+    for (int i = 0; i < numFree_; ++i)
+        for (int k = offsets[i]; k < offsets[i + 1]; ++k) // lower triangle: columns[k] <= i
         {
-            x[i] -= c * levelSolutions_[j][i];
-            b[i] -= c * levelLoads_[j][i];
+            const int j = columns[k];
+            y[i] += part[k] * x[j];
+            if (j != i)
+                y[j] += part[k] * x[i];
         }
-    }
-    const double energy = dot(x, b);
-    // nothing new (within 1e-3 of its energy norm), or lost to rounding
-    if (!(energy > 1e-6 * start * start) || !std::isfinite(energy))
-        return;
-    const double scale = 1.0 / std::sqrt(energy);
-    for (std::size_t i = 0; i < x.size(); ++i)
-    {
-        x[i] *= scale;
-        b[i] *= scale;
-    }
-    if (static_cast<int>(levelSolutions_.size()) >= kLevelSolvesKept)
-    {
-        levelSolutions_.erase(levelSolutions_.begin()); // the oldest
-        levelLoads_.erase(levelLoads_.begin());
-    }
-    levelSolutions_.push_back(std::move(x));
-    levelLoads_.push_back(std::move(b));
+    MPI_Allreduce(MPI_IN_PLACE, y.data(), numFree_, MPI_DOUBLE, MPI_SUM, comm_);
 }
 
-void StructuralSolver::projectOnLevelSolves(std::vector<double>& rhs, std::vector<double>& x) const
+void StructuralSolver::rememberSolve(std::vector<double> x)
 {
-    if (levelSolvesVersion_ != linear_->valuesVersion())
-        return; // the matrix changed since they were kept
-    for (std::size_t j = 0; j < levelSolutions_.size(); ++j)
+    const bool parts = problem_.recycleSolutions && !lambdaPart_.empty();
+    if (parts != kept_.withParts || (!parts && kept_.valuesVersion != linear_->valuesVersion()))
     {
-        const double c = std::inner_product(levelSolutions_[j].begin(), levelSolutions_[j].end(),
-                                            rhs.begin(), 0.0);
+        kept_ = KeptSolves{};
+        kept_.valuesVersion = linear_->valuesVersion();
+        kept_.withParts = parts;
+    }
+    const auto dot = [](const std::vector<double>& a, const std::vector<double>& c)
+    { return std::inner_product(a.begin(), a.end(), c.begin(), 0.0); };
+    const double start = std::sqrt(dot(x, x));
+    if (!(start > 0.0) || !std::isfinite(start))
+        return;
+    for (int pass = 0; pass < 2; ++pass) // Gram-Schmidt twice: orthogonal to rounding
+        for (const auto& q : kept_.x)
+        {
+            const double c = dot(q, x);
+            for (std::size_t i = 0; i < x.size(); ++i)
+                x[i] -= c * q[i];
+        }
+    const double rest = std::sqrt(dot(x, x));
+    if (!(rest > 1e-6 * start)) // nothing new
+        return;
+    for (double& v : x)
+        v /= rest;
+    std::vector<double> first, second;
+    if (parts)
+    {
+        partProduct(lambdaPart_, x, first);
+        partProduct(muPart_, x, second);
+    }
+    else
+    {
+        std::vector<double> copy = x; // multiplyAll takes rank 0's x
+        linear_->multiplyAll(copy, first);
+    }
+    if (static_cast<int>(kept_.x.size()) >= kSolvesKept) // drop the oldest
+    {
+        kept_.x.erase(kept_.x.begin());
+        kept_.firstProduct.erase(kept_.firstProduct.begin());
+        if (!kept_.secondProduct.empty())
+            kept_.secondProduct.erase(kept_.secondProduct.begin());
+        const Eigen::Index m = kept_.firstGram.rows() - 1;
+        kept_.firstGram = Eigen::MatrixXd(kept_.firstGram.bottomRightCorner(m, m));
+        if (parts)
+            kept_.secondGram = Eigen::MatrixXd(kept_.secondGram.bottomRightCorner(m, m));
+    }
+    const Eigen::Index m = static_cast<Eigen::Index>(kept_.x.size());
+    const auto grow = [&](Eigen::MatrixXd& gram, const std::vector<std::vector<double>>& products,
+                          const std::vector<double>& product)
+    {
+        gram.conservativeResize(m + 1, m + 1);
+        for (Eigen::Index j = 0; j < m; ++j) // symmetric part of X^T P X
+            gram(m, j) = gram(j, m) = 0.5 * (dot(x, products[static_cast<std::size_t>(j)]) +
+                                             dot(kept_.x[static_cast<std::size_t>(j)], product));
+        gram(m, m) = dot(x, product);
+    };
+    grow(kept_.firstGram, kept_.firstProduct, first);
+    kept_.firstProduct.push_back(std::move(first));
+    if (parts)
+    {
+        grow(kept_.secondGram, kept_.secondProduct, second);
+        kept_.secondProduct.push_back(std::move(second));
+    }
+    kept_.x.push_back(std::move(x));
+}
+
+void StructuralSolver::projectOnSolves(std::vector<double>& rhs, std::vector<double>& x) const
+{
+    const bool parts = problem_.recycleSolutions && !lambdaPart_.empty();
+    const Eigen::Index m = static_cast<Eigen::Index>(kept_.x.size());
+    if (m == 0 || parts != kept_.withParts ||
+        (!parts && kept_.valuesVersion != linear_->valuesVersion()))
+        return; // nothing kept, or the matrix changed since they were kept
+    // K X = a (first products) + b (second products) for the current tangent
+    const double a = parts ? lambdaValues_ : 1.0, b = parts ? muValues_ : 0.0;
+    Eigen::MatrixXd gram = a * kept_.firstGram;
+    if (parts)
+        gram += b * kept_.secondGram;
+    Eigen::VectorXd g(m);
+    for (Eigen::Index j = 0; j < m; ++j)
+        g(j) = std::inner_product(kept_.x[static_cast<std::size_t>(j)].begin(),
+                                  kept_.x[static_cast<std::size_t>(j)].end(), rhs.begin(), 0.0);
+    // c = gram^+ g: directions whose energy is rounding (below 1e-12 of the largest) are dropped
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(gram);
+    if (eigen.info() != Eigen::Success)
+        return;
+    const Eigen::VectorXd& lambdas = eigen.eigenvalues();
+    const double cut = 1e-12 * lambdas.cwiseAbs().maxCoeff();
+    Eigen::VectorXd projected = eigen.eigenvectors().transpose() * g;
+    for (Eigen::Index k = 0; k < m; ++k)
+        projected(k) = lambdas(k) > cut ? projected(k) / lambdas(k) : 0.0;
+    const Eigen::VectorXd c = eigen.eigenvectors() * projected;
+    if (!c.allFinite())
+        return;
+    for (Eigen::Index j = 0; j < m; ++j)
+    {
+        const auto J = static_cast<std::size_t>(j);
+        const double cj = c(j);
         for (std::size_t i = 0; i < rhs.size(); ++i)
         {
-            x[i] += c * levelSolutions_[j][i];
-            rhs[i] -= c * levelLoads_[j][i];
+            x[i] += cj * kept_.x[J][i];
+            rhs[i] -= cj * (parts ? a * kept_.firstProduct[J][i] + b * kept_.secondProduct[J][i]
+                                  : kept_.firstProduct[J][i]);
         }
     }
 }
@@ -938,14 +1028,14 @@ Eigen::MatrixXd StructuralSolver::solveResponseColumns(std::vector<double>& rhs,
                                                        int count)
 {
     const std::size_t free = static_cast<std::size_t>(numFree_);
-    const bool stale = linear_->factorIsStale();
+    const bool stale = linear_->cgOnStaleFactor();
     linear_->solveMany(rhs, leading + count, allowances);
     linear_->broadcastFromRoot(rhs);
     responseColumns_ += count;
     // on a stale factor the columns' answers serve the level's later solves
-    // (projectOnLevelSolves)
+    // (projectOnSolves)
     for (int j = leading; stale && j < leading + count; ++j)
-        rememberLevelSolve(
+        rememberSolve(
             std::vector<double>(rhs.begin() + static_cast<std::ptrdiff_t>(free * j),
                                 rhs.begin() + static_cast<std::ptrdiff_t>(free * (j + 1))));
     return wettedRowsOf(rhs, leading, count);

@@ -30,10 +30,11 @@
 // a tenth of Newton's tolerance (residualTolerance * max(|f_ext|, |f_int|) + absoluteTolerance),
 // then checks it with one residual assembly; that assembly evaluates stress = D(dt) strain + the
 // point's stress at zero strain (built once per level: 6 doubles per integration point), not
-// the law. A shear modulus that drifted more than ProblemDefinition::refactorShearDrift from the
-// factorized one is refactorized at the level's first solve (its re-solves are then one
-// back-substitution each). On a stale factor a re-solve first projects its right-hand side on
-// the level's earlier solutions (and interfaceResponse() columns), so CG starts closer.
+// the law. By default the level-0 factorization serves the whole history (a shear modulus that
+// drifted more than ProblemDefinition::refactorShearDrift, if set, is refactorized at the
+// level's first solve). On a stale factor every linear solve first projects its right-hand side
+// on the kept earlier solutions (of every level, with the isotropic parts; interfaceResponse()
+// columns included), so CG starts closer (rememberSolve).
 #pragma once
 #include "fe/ElementKernel.hpp"
 #include "fe/Settings.hpp"
@@ -84,9 +85,19 @@ struct ProblemDefinition
     linalg::DirectSolverOptions linearSolver;
     // Linear problem with an isotropic law: refactorize the tangent at a level whose shear
     // modulus differs from the factorized one by more than this fraction (CG on the old factor
-    // needs more iterations the more it drifted); 0: never (CG on the first factorization, as
-    // long as it converges).
-    double refactorShearDrift = 0.05;
+    // needs more iterations the more it drifted); 0 (default): never (CG on the first
+    // factorization, as long as it converges within linalg::DirectSolverOptions::
+    // refactorAfterIterations). With lambda K_lambda + mu K_mu the preconditioned spectrum lies
+    // between the ratios of the moduli to the factorized ones (Rayleigh quotient of two positive
+    // parts), so a drift of 30 % costs a few CG iterations, while a factorization costs 25-60
+    // solve phases on the hydrofoil meshes (bench/solid-iteration/README.md).
+    double refactorShearDrift = 0.0;
+    // Linear problem with an isotropic law: the linear solutions on a stale factor are kept
+    // (at most 12) with their products by the tangent's two parts, and every later solve, of any
+    // level, first takes the part of its right-hand side in their span by projection (see
+    // rememberSolve); false: kept for the level only, forgotten when dt changes (for
+    // comparisons: bench/solid-iteration --no-recycle).
+    bool recycleSolutions = true;
     bool printIterations = false; // rank 0 prints Newton progress
 };
 
@@ -235,15 +246,24 @@ private:
     SolveReport solveLevel(const material::TimeStep& step, const InterfaceLoads& interface,
                            double loadFactor);
     bool linearUpdate(const std::vector<double>& fTarget, SolveReport& report);
-    // Linear problem: the level's earlier linear solutions x (free dofs, replicated) with K x
-    // (one product each), K-orthonormalized, at most kLevelSolvesKept (the oldest dropped),
-    // forgotten when the tangent changes. A new rhs is first projected on them (Galerkin:
-    // x += U U^T rhs, rhs -= K U U^T rhs) and only the rest goes to the linear solver: CG on
-    // a stale factor starts closer. Used on a stale factor only (a current one solves exactly
-    // in one phase, and K x of a stiff problem carries rounding of eps cond(K)). Collective.
-    void rememberLevelSolve(std::vector<double> x);
-    void projectOnLevelSolves(std::vector<double>& rhs, std::vector<double>& x) const;
-    static constexpr int kLevelSolvesKept = 12;
+    // Linear problem: earlier linear solutions x (free dofs, replicated), Euclidean-
+    // orthonormalized, at most kSolvesKept (the oldest dropped). A new rhs is first projected on
+    // them (Galerkin with the current tangent K: x += X c, rhs -= K X c, c = (X^T K X)^-1 X^T rhs)
+    // and only the rest goes to the linear solver: CG on a stale factor starts closer. With the
+    // tangent's isotropic parts (lambda K_lambda + mu K_mu, linearTangentFromParts) each x keeps
+    // K_lambda x and K_mu x, so K x of any later level's (lambda, mu) costs no product and the
+    // solutions serve every later level (a creep history's solutions span few directions);
+    // otherwise each keeps K x and they are forgotten when the tangent changes. Used on a stale
+    // factor only (a current one solves exactly in one phase, and K x of a stiff problem carries
+    // rounding of eps cond(K)). rememberSolve() costs one or two distributed products.
+    // Collective; rhs and x replicated.
+    void rememberSolve(std::vector<double> x);
+    void projectOnSolves(std::vector<double>& rhs, std::vector<double>& x) const;
+    static constexpr int kSolvesKept = 12;
+    // y = P x for one isotropic part P (lambdaPart_ or muPart_, this rank's entries): summed over
+    // the ranks, returned on every rank. Collective.
+    void partProduct(const std::vector<double>& part, const std::vector<double>& x,
+                     std::vector<double>& y) const;
     // interfaceResponse()'s columns: the checked load changes on the free dofs (column-major,
     // rank 0; empty elsewhere) and each column's allowance relativeTolerance |b_j|. Throws
     // std::invalid_argument for a wrong size or tolerance, std::runtime_error for non-finite
@@ -259,7 +279,7 @@ private:
     // One lockstep solve of `leading` right-hand sides (rank 0; e.g. a Newton step, with
     // their allowances first) followed by the response columns; rhs holds every solution
     // afterwards, on every rank. Returns the response columns' wetted rows; on a stale factor
-    // their solutions are kept for the level's later solves (rememberLevelSolve). Not timed
+    // their solutions are kept for the level's later solves (rememberSolve). Not timed
     // (the callers count linearSeconds_). Collective.
     Eigen::MatrixXd solveResponseColumns(std::vector<double>& rhs, std::vector<double> allowances,
                                          int leading, int count);
@@ -358,8 +378,15 @@ private:
     int historyVersion_ = 0, offsetsVersion_ = -1; // committed history changes / offsets built
     int elementTangentAssemblies_ = 0;
     int responseColumns_ = 0;
-    long levelSolvesVersion_ = -1; // linear_->valuesVersion() of levelSolutions_
-    std::vector<std::vector<double>> levelSolutions_, levelLoads_; // rememberLevelSolve()
+    // rememberSolve(): x, and K_lambda x / K_mu x (with parts) or K x (first product only)
+    struct KeptSolves
+    {
+        long valuesVersion = -1; // without parts: linear_->valuesVersion() they belong to
+        bool withParts = false;  // products of the isotropic parts (else K x)
+        std::vector<std::vector<double>> x, firstProduct, secondProduct;
+        Eigen::MatrixXd firstGram, secondGram; // X^T (first|second) product, symmetric
+    } kept_;
+    double lambdaValues_ = 0.0; // lambda of values_ (with muValues_)
 
     std::vector<double> u_, uCommitted_;
     std::vector<double> fextCommitted_;

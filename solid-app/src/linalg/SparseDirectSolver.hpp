@@ -207,6 +207,9 @@ public:
     // True when the values changed since the last factorization (collective): a solve() now
     // runs CG on the stale factor (reuseFactorization) or factorizes first.
     bool factorIsStale() const;
+    // True when the next solve runs CG on the stale factorization (reuseFactorization, values
+    // changed on some rank, pattern not, no factorization requested). Collective.
+    bool cgOnStaleFactor() const;
     // Counts setValues() calls (collective, so the same on every rank): a caller's key for
     // work that holds for one matrix, e.g. solutions kept for later right-hand sides.
     long valuesVersion() const { return valuesVersion_; }
@@ -249,9 +252,6 @@ private:
                                   const std::vector<double>& residualAllowances);
     // y = A x with the current values (x significant on rank 0; y summed onto rank 0).
     void multiply(std::vector<double>& x, std::vector<double>& y) const;
-    // True when the next solve runs CG on the stale factorization (reuseFactorization, values
-    // changed on some rank, pattern not). Collective.
-    bool cgOnStaleFactor() const;
     // With a BLR factor: residual check and iterative refinement of x for b (rank 0 data);
     // true when |b - A x| <= refinementTolerance |b|. Collective.
     bool refine(const std::vector<double>& b, std::vector<double>& x);
