@@ -810,8 +810,8 @@ bool StructuralSolver::linearUpdate(const std::vector<double>& fTarget, SolveRep
     if (!std::isfinite(change2) || !std::isfinite(fi0))
         return false; // Newton diagnoses non-finite loads
     const double linearStart = MPI_Wtime();
-    // on a stale factor: the part of the rhs in the span of this level's earlier solves is
-    // solved by projection, CG gets the rest (a current factor solves exactly in one phase)
+    // on a stale factor: the part of the rhs in the span of the kept earlier solves is solved
+    // by projection, CG gets the rest (a current factor solves exactly in one phase)
     const bool stale = linear_->cgOnStaleFactor();
     std::vector<double> du(numFree_, 0.0), remainder = rhs;
     if (stale)
@@ -1032,8 +1032,7 @@ Eigen::MatrixXd StructuralSolver::solveResponseColumns(std::vector<double>& rhs,
     linear_->solveMany(rhs, leading + count, allowances);
     linear_->broadcastFromRoot(rhs);
     responseColumns_ += count;
-    // on a stale factor the columns' answers serve the level's later solves
-    // (projectOnSolves)
+    // on a stale factor the columns' answers serve the later solves (projectOnSolves)
     for (int j = leading; stale && j < leading + count; ++j)
         rememberSolve(
             std::vector<double>(rhs.begin() + static_cast<std::ptrdiff_t>(free * j),

@@ -279,7 +279,7 @@ private:
     // One lockstep solve of `leading` right-hand sides (rank 0; e.g. a Newton step, with
     // their allowances first) followed by the response columns; rhs holds every solution
     // afterwards, on every rank. Returns the response columns' wetted rows; on a stale factor
-    // their solutions are kept for the level's later solves (rememberSolve). Not timed
+    // their solutions are kept for later solves (rememberSolve). Not timed
     // (the callers count linearSeconds_). Collective.
     Eigen::MatrixXd solveResponseColumns(std::vector<double>& rhs, std::vector<double> allowances,
                                          int leading, int count);
