@@ -7,7 +7,7 @@
 # usage: ./run.sh [--preset coarse|medium|fine] [--launch mpmd|port] [--material M]
 #                 [--accelerator aitken|constant|iqn-ils] [--relaxation W] [--tolerance EPS]
 #                 [--np-fluid N] [--timeout S] [--times T0,T1,...] [--mapping TYPE] [--mesh-only]
-#                 [--restart]
+#                 [--restart] [--check-only]
 #   --preset       mesh resolution of both sides (default coarse), see README.md
 #   --launch       mpmd (default): mpirun -np N fluid-app -case fluid : -np 1 solid-app run.yaml
 #                  port: two mpiruns through scripts/launch-port (needs FSI_ROOT or launch-port on PATH)
@@ -29,15 +29,17 @@
 #   --restart      continue an interrupted run in this folder from results/checkpoint/latest (same
 #                  options otherwise; meshes and run.yaml are kept; the earlier logs are kept as
 #                  log.*.partN); see scripts/fsi-restart-fluid
+#   --check-only   validate the options and exit: 0, or 2 with the one-line error; writes nothing
+#                  (scripts/run calls it before it makes the run folder)
 # Writes log.fluid, log.solid, run.yaml (the config used) and results/: history.csv,
 # coupling.csv, summary.csv (solid-app), forces.csv, benchmark.csv, summary.txt (tools/summary.py),
 # fluid-coupling.csv (fluid-app's per-iteration log), wall_s.
 set -euo pipefail
 here=$(pwd)
-usage() { sed -n '6,34p' "$0" | sed 's/^# \{0,1\}//'; exit "${1:-0}"; }
+usage() { sed -n '6,36p' "$0" | sed 's/^# \{0,1\}//'; exit "${1:-0}"; }
 
 preset=coarse launch=mpmd material=elastic accelerator="" relaxation="" tolerance="" npf=1
-timeout='' mesh_only=0 beam= times='' restart=0 mapping=''
+timeout='' mesh_only=0 beam= times='' restart=0 mapping='' check_only=0
 while [ $# -gt 0 ]; do
   case "$1" in
     --preset) preset=$2; shift 2 ;;
@@ -53,6 +55,7 @@ while [ $# -gt 0 ]; do
     --times) times=$2; shift 2 ;;
     --mapping) mapping=$2; shift 2 ;;
     --restart) restart=1; shift ;;
+    --check-only) check_only=1; shift ;;
     -h|--help) usage 0 ;;
     *) echo "error: run.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
@@ -77,6 +80,15 @@ esac
 case "$mapping" in ""|nearest-neighbour|rbf-thin-plate|rbf-pu|nearest-projection) ;;
   *) echo "error: run.sh: --mapping must be nearest-neighbour, rbf-thin-plate, rbf-pu or nearest-projection" >&2; exit 2 ;; esac
 case "$accelerator" in ""|aitken|constant|iqn-ils) ;; *) echo "error: run.sh: --accelerator must be aitken, constant or iqn-ils" >&2; exit 2 ;; esac
+die() { echo "error: run.sh: $*" >&2; exit 2; }
+[[ "$npf" =~ ^[1-9][0-9]*$ ]] || die "--np-fluid must be a positive integer (got '$npf')"
+[[ "$timeout" =~ ^[1-9][0-9]*$ ]] || die "--timeout must be a positive number of seconds (got '$timeout')"
+[[ "$nx,$ny" =~ ^[1-9][0-9]*,[1-9][0-9]*$ ]] && [ $((ny % 2)) = 0 ] ||
+  die "--beam must be NX,NY with positive integers, NY even (got '$nx,$ny')"
+positive() { awk -v v="$1" 'BEGIN{exit !(v ~ /^[0-9.eE+-]+$/ && v + 0 > 0)}'; }
+[ -z "$relaxation" ] || positive "$relaxation" || die "--relaxation must be a number > 0, e.g. 0.5 (got '$relaxation')"
+[ -z "$tolerance" ] || positive "$tolerance" || die "--tolerance must be a length in m > 0, e.g. 1e-8 (got '$tolerance')"
+[ "$check_only" = 0 ] || exit 0
 # The channel generator is CFD1's (two wall patches: cylinder rigid, beam the interface).
 generator=${FSI_ROOT:?run through ./scripts/run cases/turek-hron-fsi1 (FSI_ROOT unset)}/cases/turek-hron-cfd1/blockMesh.py
 [ -f "$config" ] && [ -f "$generator" ] || { echo "error: run.sh: run me inside a copy of cases/turek-hron-fsi1 ($config or $generator missing)" >&2; exit 2; }

@@ -11,7 +11,9 @@
 # options and writes nothing. Needs FSI_ROOT (the repository); no OpenFOAM run, no MPI.
 # Also: tools/meshModel.sh names the default model of each mesh and preset, and
 # `scripts/run cases/hydrofoil --help` prints run.sh's options and exits 0 without setup, build
-# or a run folder.
+# or a run folder. And the FSI1 runner (cases/turek-hron-fsi1/run.sh, which scripts/run also
+# calls with --check-only first): exit 0 on valid options, a bad one refused in one line, nothing
+# written either way.
 set -uo pipefail
 work=${1:?usage: test_run_options.sh WORK}
 : "${FSI_ROOT:?set FSI_ROOT to the repository}"
@@ -104,4 +106,25 @@ elif [ -e "$help_out" ] || grep -q '^\[setup\]' "$work/help.txt"; then
 else
     echo "ok: scripts/run cases/hydrofoil --help"
 fi
+fsi1=$work/fsi1
+rm -rf "$fsi1"; mkdir -p "$fsi1"; cp -r "$FSI_ROOT/cases/turek-hron-fsi1/." "$fsi1/"
+before=$(ls -A "$fsi1" | sort | tr '\n' ' ')
+fsi1check() {   # fsi1check EXPECTED_EXIT OPTIONS...: run.sh --check-only in the FSI1 copy
+  local rc=0 want=$1; shift
+  (cd "$fsi1" && ./run.sh --check-only "$@" > "$work/fsi1.out" 2> "$work/fsi1.err") || rc=$?
+  if [ "$rc" -ne "$want" ]; then
+    echo "FAIL: fsi1 run.sh --check-only $*: exit $rc, expected $want"; cat "$work/fsi1.err"; fail=1
+  elif [ "$want" = 2 ] && { [ "$(wc -l < "$work/fsi1.err")" -ne 1 ] || ! grep -q -- "$1" "$work/fsi1.err"; }; then
+    echo "FAIL: fsi1 run.sh --check-only $*: expected one line naming $1, got:"; cat "$work/fsi1.err"; fail=1
+  elif [ "$(ls -A "$fsi1" | sort | tr '\n' ' ')" != "$before" ]; then
+    echo "FAIL: fsi1 run.sh --check-only $*: wrote into the case folder"; fail=1
+  else
+    echo "ok: fsi1 run.sh --check-only $* -> exit $rc $(cat "$work/fsi1.err")"
+  fi
+}
+fsi1check 0 --preset medium --accelerator iqn-ils --relaxation 0.4 --tolerance 1e-8
+fsi1check 2 --np-fluid 0
+fsi1check 2 --beam 3,3
+fsi1check 2 --relaxation -1
+fsi1check 2 --mapping rbf
 exit $fail
