@@ -39,7 +39,7 @@ here=$(pwd)
 usage() { sed -n '6,36p' "$0" | sed 's/^# \{0,1\}//'; exit "${1:-0}"; }
 
 preset=coarse launch=mpmd material=elastic accelerator="" relaxation="" tolerance="" npf=1
-timeout='' mesh_only=0 beam= times='' restart=0 mapping='' check_only=0
+timeout='' mesh_only=0 beam='' times='' restart=0 mapping='' check_only=0
 while [ $# -gt 0 ]; do
   case "$1" in
     --preset) preset=$2; shift 2 ;;
