@@ -1029,7 +1029,29 @@ Eigen::MatrixXd StructuralSolver::solveResponseColumns(std::vector<double>& rhs,
 {
     const std::size_t free = static_cast<std::size_t>(numFree_);
     const bool stale = linear_->cgOnStaleFactor();
+    // on a stale factor each response column first takes its part in the span of the kept
+    // solutions (rank 0 holds the columns; the kept ones are replicated, so no communication):
+    // CG gets the rest, often already within the column's loose allowance (no iteration), and
+    // the lockstep solve then runs with fewer columns
+    std::vector<double> fromKept;
+    if (stale && rank_ == 0)
+    {
+        fromKept.assign(free * static_cast<std::size_t>(count), 0.0);
+        std::vector<double> column(free), part(free);
+        for (int j = 0; j < count; ++j)
+        {
+            const auto first = rhs.begin() + static_cast<std::ptrdiff_t>(free * (leading + j));
+            std::copy(first, first + static_cast<std::ptrdiff_t>(free), column.begin());
+            std::fill(part.begin(), part.end(), 0.0);
+            projectOnSolves(column, part);
+            std::copy(column.begin(), column.end(), first);
+            std::copy(part.begin(), part.end(),
+                      fromKept.begin() + static_cast<std::ptrdiff_t>(free * j));
+        }
+    }
     linear_->solveMany(rhs, leading + count, allowances);
+    for (std::size_t k = 0; k < fromKept.size(); ++k) // rank 0, before the broadcast
+        rhs[free * static_cast<std::size_t>(leading) + k] += fromKept[k];
     linear_->broadcastFromRoot(rhs);
     responseColumns_ += count;
     // on a stale factor the columns' answers serve the later solves (projectOnSolves)
