@@ -36,6 +36,7 @@ export HYDROFOIL_INIT_FROM=$rigidRuns/turbulent-$scheme-$algorithm$suffix-LEVEL/
 export HYDROFOIL_GCI_MODEL=$model HYDROFOIL_GCI_OUT=$FSI_VERIFY_DIR/gci.csv
 study=$FSI_VERIFY_DIR
 mkdir -p "$study/$model"
+rm -f "$study/$model/richardson.csv" # written by hydrofoil.sh only with three levels
 FSI_VERIFY_DIR=$study/$model bash "$(dirname "$0")/hydrofoil.sh" "$@"
 set -- ${HYDROFOIL_LEVELS:-coarse medium fine}
 runs=${HYDROFOIL_RUNS:-$study/$model}
