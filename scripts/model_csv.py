@@ -20,3 +20,21 @@ def write_model_rows(path, columns, model, rows):
         w.writeheader()
         w.writerows(kept + rows)
     os.replace(path + ".tmp", path)
+
+
+def tag_file_rows(src, dst, model):
+    """Copy the rows of the single-model CSV src into dst as model's block (a leading "model"
+    column; dst's rows of other models kept, model's earlier rows replaced)."""
+    with open(src, newline="") as f:
+        reader = csv.DictReader(f)
+        rows = [dict(r, model=model) for r in reader]
+        columns = ["model"] + [c for c in reader.fieldnames if c != "model"]
+    write_model_rows(dst, columns, model, rows)
+
+
+if __name__ == "__main__":
+    import sys
+
+    if len(sys.argv) != 5 or sys.argv[1] != "tag":
+        sys.exit("usage: model_csv.py tag SRC DST MODEL")
+    tag_file_rows(*sys.argv[2:5])

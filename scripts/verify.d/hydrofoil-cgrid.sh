@@ -43,16 +43,7 @@ runs=${HYDROFOIL_RUNS:-$study/$model}
 # this model's block of the study's shared files
 for f in levels.csv error_vs_runtime.csv richardson.csv; do
   [ -f "$study/$model/$f" ] || continue
-  "$FSI_PYTHON" - "$study/$model/$f" "$study/$f" "$model" "$root/scripts" <<'PY'
-import csv, sys
-src, dst, model, scripts = sys.argv[1:5]
-sys.path.insert(0, scripts)
-from model_csv import write_model_rows
-with open(src, newline="") as f:
-    reader = csv.DictReader(f)
-    rows = [dict(r, model=model) for r in reader]
-    write_model_rows(dst, ["model"] + reader.fieldnames, model, rows)
-PY
+  "$FSI_PYTHON" "$root/scripts/model_csv.py" tag "$study/$model/$f" "$study/$f" "$model"
 done
 if [ $# = 3 ]; then
   "$FSI_PYTHON" "$root/scripts/history_gci.py" --steady --model "$model" \
