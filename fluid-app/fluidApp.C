@@ -27,6 +27,7 @@ Usage
 #include "turbulentTransportModel.H"
 #include "fluidSolidCoupling.H"
 #include "runMode.H"
+#include "simpleAcceleration.H"
 
 #include <cmath>
 #include <cstdlib>
@@ -51,6 +52,8 @@ int main(int argc, char* argv[])
 
     turbulence->validate();
     fluidSolidCoupling coupling(mesh, U, p, phi, turbulence());
+    simpleAcceleration acceleration(simpleAcceleration::Settings::read(simpleDict), U, p, phi);
+    Info<< acceleration.describe().c_str() << nl << endl;
 
     #include "steadySolve.H"
 

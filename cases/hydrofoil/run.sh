@@ -39,6 +39,11 @@
 #                                           boundary-layer mesh made before 2026-12-05 evening
 #                                           (SIMPLEC oscillates in its tip gap: README, "The tip
 #                                           gap's re-spaced cells"; tools/meshModel.sh)
+#   --simple-acceleration none|anderson[:DEPTH]
+#                                           the fluid's SIMPLE iterations plain (default) or
+#                                           Anderson-mixed over the last DEPTH (5) iterations
+#                                           (fvSolution SIMPLE.acceleration, fluid-app/README.md;
+#                                           README, "Anderson-mixed SIMPLE iterations")
 #   --fluid-mesh cgrid|snappy               fluid mesh (mesh.sh): cgrid (default), the boundary-
 #                                           layer mesh, y+ <= 1 on the whole foil; snappy, the
 #                                           snappyHexMesh mesh without layers: with it the model
@@ -124,7 +129,7 @@ set -euo pipefail
 source "$FSI_ROOT/scripts/env.sh"
 
 preset=coarse material=both npf=2 nps=2 launch=mpmd tc=0.12 cli=0.5 end="" timeout=900 meshFrom="" restart=0 checkOnly=0
-flow="" scheme=upwind rootWall=wall algorithm="" fluidMesh="" initFrom="" band="" maxFluidIt="" fluidTol="" couplingTol="" bandWindow="" bandMean="" bandRef="" oscWindow="" wsFlux="" wsMaxCoef="" mapSmoothing=""
+flow="" scheme=upwind rootWall=wall algorithm="" fluidMesh="" initFrom="" band="" maxFluidIt="" fluidTol="" couplingTol="" bandWindow="" bandMean="" bandRef="" oscWindow="" wsFlux="" wsMaxCoef="" mapSmoothing="" acceleration=""
 die() { echo "error: hydrofoil/run.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -141,6 +146,7 @@ while [ $# -gt 0 ]; do
     --flow) flow=$2; shift 2 ;;
     --scheme) scheme=$2; shift 2 ;;
     --algorithm) algorithm=$2; shift 2 ;;
+    --simple-acceleration) [ $# -ge 2 ] || die "--simple-acceleration needs none or anderson[:DEPTH]"; acceleration=$2; shift 2 ;;
     --root-wall) [ $# -ge 2 ] || die "--root-wall needs wall or slip"; rootWall=$2; shift 2 ;;
     --fluid-mesh) fluidMesh=$2; shift 2 ;;
     --init-from) [ $# -ge 2 ] || die "--init-from needs an OpenFOAM case folder"; initFrom=$2; shift 2 ;;
@@ -166,6 +172,8 @@ case "$launch" in mpmd|port) ;; *) die "--launch must be mpmd or port" ;; esac
 case "$fluidMesh" in ""|snappy|cgrid) ;; *) die "--fluid-mesh must be cgrid or snappy (got '$fluidMesh')" ;; esac
 case "$algorithm" in ""|simple|simplec) ;; *) die "--algorithm must be simple or simplec (got '$algorithm')" ;; esac
 case "$rootWall" in wall|slip) ;; *) die "--root-wall must be wall (the paper's no-slip tunnel) or slip (got '$rootWall')" ;; esac
+[ -z "$acceleration" ] || [[ "$acceleration" =~ ^(none|anderson(:([1-9]|[1-4][0-9]|50))?)$ ]] ||
+  die "--simple-acceleration '$acceleration' must be none or anderson[:DEPTH], DEPTH in 1..50 (e.g. anderson:5)"
 # The fluid mesh of this run: a new one (--fluid-mesh, default cgrid) or the one of --mesh-from /
 # --restart; the model follows the mesh unless given (tools/meshModel.sh; README, "The case
 # default"): k-omega SST with SIMPLEC on the boundary-layer mesh (classic SIMPLE on an older
@@ -296,7 +304,8 @@ for m in "${runs[@]}"; do
   if [ ${#resume[@]} -eq 0 ]; then
     # the mesh's fluid case with this case's settings, flow model and scheme, decomposed
     "$run/tools/fluidCase.sh" "$fluid" "$run/mesh/fluid" "$npf" --flow "$flow" --scheme "$scheme" \
-        ${algorithm:+--algorithm "$algorithm"} ${initFrom:+--init-from "$initFrom"} --root-wall "$rootWall"
+        ${algorithm:+--algorithm "$algorithm"} ${initFrom:+--init-from "$initFrom"} --root-wall "$rootWall" \
+        ${acceleration:+--simple-acceleration "$acceleration"}
     # the options given, as fsiDict coupled/KEY
     for kv in bandTolerance="$band" maxIterations="$maxFluidIt" bandMeanTolerance="$bandMean" \
               bandReferenceForce="$bandRef" oscillationWindow="$oscWindow" bandWindow="$bandWindow" \

@@ -2,6 +2,7 @@
 // fluid-app: where a driver's SOLVE starts (see flowWarmStart.H).
 #include "flowWarmStart.H"
 #include "fvcFlux.H"
+#include "coupledPatches.H"
 
 #include <algorithm>
 #include <cmath>
@@ -13,44 +14,11 @@
 namespace
 {
 
-// Turbulence fields the model may own (kOmegaSST, kOmegaSSTLM, kEpsilon, SpalartAllmaras):
-// non-negative, extrapolated with the flow when present.
-const char* const turbulenceFieldNames[] =
-    {"k", "omega", "epsilon", "nut", "nuTilda", "ReThetat", "gammaInt"};
-
-// The processor patches' values from f's new internal field; the other boundary conditions keep
-// the last solve's values until the turbulence model's next correct(). A turbulence field's
-// wall function can only be evaluated inside correct() (omegaWallFunction reads the model's
-// production G, which kOmegaSST registers there only: "request for volScalarField::Internal
-// kOmegaSST:G failed" at the coupled run's third solve, the first extrapolated one).
-void evaluateCoupledPatches(Foam::volScalarField& f)
-{
-    using Foam::Pstream;
-    auto& patches = f.boundaryFieldRef();
-    const Pstream::commsTypes comms =
-        Pstream::defaultCommsType == Pstream::commsTypes::scheduled
-      ? Pstream::commsTypes::blocking
-      : Pstream::defaultCommsType;
-    const Foam::label requests = Pstream::nRequests();
-    forAll(patches, patchi)
-    {
-        if (patches[patchi].coupled())
-        {
-            patches[patchi].initEvaluate(comms);
-        }
-    }
-    if (comms == Pstream::commsTypes::nonBlocking && Pstream::parRun())
-    {
-        Pstream::waitRequests(requests);
-    }
-    forAll(patches, patchi)
-    {
-        if (patches[patchi].coupled())
-        {
-            patches[patchi].evaluate(comms);
-        }
-    }
-}
+// The turbulence fields (coupledPatches.H) are extrapolated with the flow when present.
+// (A turbulence field's wall function can only be evaluated inside correct(): extrapolated
+// turbulence fields update their processor patches only, coupledPatches.H. Evaluating all of
+// them failed with "request for volScalarField::Internal kOmegaSST:G failed" at the coupled
+// run's third solve, the first extrapolated one.)
 
 } // namespace
 

@@ -4,6 +4,7 @@
 #
 #   cases/hydrofoil/tools/fluidCase.sh DEST MESH_FLUID NP [--flow F] [--scheme S]
 #       [--algorithm simple] [--init-from SOURCE_CASE] [--root-wall wall|slip]
+#       [--simple-acceleration none|anderson[:DEPTH]]
 #
 # Copies MESH_FLUID (a mesh.sh fluid case) to DEST (replaced), gives it this case's solver
 # settings (fluid/system/fsiDict, fvSchemes, fvSolution: a mesh folder may predate them), the
@@ -12,26 +13,31 @@
 # serial, no processor folders). --init-from: the initial fields are SOURCE_CASE's solution
 # mapped onto this mesh (tools/mapInitialFields.sh; grid sequencing). --root-wall slip: the
 # tunnel's root wall z = 0 becomes a slip patch `root` (tools/rootWall.sh; default wall: the
-# paper's no-slip tunnel). Used by run.sh for the
+# paper's no-slip tunnel). --simple-acceleration: sets fvSolution SIMPLE.acceleration (anderson:
+# the SIMPLE iterations Anderson-mixed over the last DEPTH, default 5; none: plain; not given:
+# the case's fluid/system/fvSolution; fluid-app/README.md). Used by run.sh for the
 # coupled runs and by scripts/bench-fsi for its rigid baseline, so that both solve with the
 # same settings; options other than --init-from go to tools/setFlow.sh.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 case_dir="$(cd "$here/.." && pwd)"
 die() { echo "error: fluidCase.sh: $*" >&2; exit 2; }
-[ $# -ge 3 ] || die "usage: fluidCase.sh DEST MESH_FLUID NP [--flow F] [--scheme S] [--algorithm simple] [--init-from SOURCE_CASE] [--root-wall wall|slip]"
+[ $# -ge 3 ] || die "usage: fluidCase.sh DEST MESH_FLUID NP [--flow F] [--scheme S] [--algorithm simple] [--init-from SOURCE_CASE] [--root-wall wall|slip] [--simple-acceleration none|anderson[:DEPTH]]"
 dest=$1 meshFluid=$2 np=$3; shift 3
-initFrom="" rootWall=wall flowArgs=()
+initFrom="" rootWall=wall flowArgs=() acceleration=""
 while [ $# -gt 0 ]; do
   case "$1" in
     --init-from) [ $# -ge 2 ] || die "--init-from needs a case folder"; initFrom=$2; shift 2 ;;
     --root-wall) [ $# -ge 2 ] || die "--root-wall needs wall or slip"; rootWall=$2; shift 2 ;;
+    --simple-acceleration) [ $# -ge 2 ] || die "--simple-acceleration needs none or anderson[:DEPTH]"; acceleration=$2; shift 2 ;;
     *) flowArgs+=("$1"); shift ;;
   esac
 done
 [ -d "$meshFluid/constant/polyMesh" ] || die "$meshFluid is not a fluid case with a mesh"
 [[ "$np" =~ ^[1-9][0-9]*$ ]] || die "NP '$np' must be a positive integer"
 case "$rootWall" in wall|slip) ;; *) die "--root-wall '$rootWall' must be wall (the paper's no-slip tunnel) or slip" ;; esac
+[ -z "$acceleration" ] || [[ "$acceleration" =~ ^(none|anderson(:([1-9]|[1-4][0-9]|50))?)$ ]] ||
+  die "--simple-acceleration '$acceleration' must be none or anderson[:DEPTH], DEPTH in 1..50 (e.g. anderson:5)"
 sourceRoot=0
 [ -z "$initFrom" ] || ! grep -q '^ *root$' "$initFrom/constant/polyMesh/boundary" 2> /dev/null || sourceRoot=1
 [ "$sourceRoot" = 0 ] || [ "$rootWall" = slip ] ||
@@ -48,6 +54,12 @@ for f in "$case_dir/fluid/0.orig"/*; do [ -e "$dest/0/$(basename "$f")" ] || cp 
 [ "$rootWall" = wall ] || [ "$sourceRoot" = 0 ] || "$here/rootWall.sh" "$dest" > /dev/null
 [ -z "$initFrom" ] || "$here/mapInitialFields.sh" "$dest" "$initFrom" > /dev/null
 [ "$rootWall" = wall ] || [ "$sourceRoot" = 1 ] || "$here/rootWall.sh" "$dest" > /dev/null
+if [ "$acceleration" = none ]; then
+  foamDictionary "$dest/system/fvSolution" -entry SIMPLE/acceleration -set "{ type none; }" >/dev/null
+elif [ -n "$acceleration" ]; then
+  depth=5; [ "$acceleration" = anderson ] || depth=${acceleration#anderson:}
+  foamDictionary "$dest/system/fvSolution" -entry SIMPLE/acceleration -set "{ type anderson; depth $depth; }" >/dev/null
+fi
 if [ "$np" -gt 1 ]; then
   foamDictionary "$dest/system/decomposeParDict" -entry numberOfSubdomains -set "$np" >/dev/null
   foamDictionary "$dest/system/decomposeParDict" -entry method -set hierarchical >/dev/null

@@ -4,7 +4,8 @@
 #
 # run.sh refuses bad values of --band-tolerance, --band-mean-tolerance, --band-reference-force,
 # --band-window, --oscillation-window, --fluid-tolerance, --coupling-tolerance, --warm-start-flux,
-# --mapping-smoothing, --max-fluid-iterations, --fluid-mesh, --algorithm and --root-wall (and a --fluid-mesh
+# --mapping-smoothing, --max-fluid-iterations, --fluid-mesh, --algorithm, --root-wall and
+# --simple-acceleration (and a --fluid-mesh
 # that contradicts the mesh of --mesh-from) before it writes anything:
 # exit 2, one line on stderr naming the option, no mesh/ or results/ in the run folder; so is an
 # --init-from case without a reconstructed solved time. `run.sh --check-only` exits 0 on valid
@@ -56,6 +57,9 @@ check --mapping-smoothing 0.05  # a radius in m: 5 cm smooths the whole foil
 check --fluid-mesh blockMesh
 check --algorithm piso
 check --root-wall free
+check --simple-acceleration andersen
+check --simple-acceleration anderson:0
+check --simple-acceleration anderson:51
 # --fluid-mesh that contradicts the mesh of --mesh-from: refused before anything is written
 fake=$work/fake-snappy-run
 rm -rf "$fake"; mkdir -p "$fake/mesh"
@@ -70,7 +74,7 @@ dir=$work/run
 rm -rf "$dir"; mkdir -p "$dir"; cp -r "$FSI_ROOT/cases/hydrofoil/." "$dir/"
 before=$(cd "$dir" && find . | sort | md5sum)
 if ! (cd "$dir" && ./run.sh --check-only --material baseline --scheme linearUpwind --root-wall slip \
-        --oscillation-window 20 > out.txt 2> err.txt); then
+        --oscillation-window 20 --simple-acceleration anderson:5 > out.txt 2> err.txt); then
     echo "FAIL: run.sh --check-only with valid options: non-zero exit"; cat "$dir/err.txt"; fail=1
 elif [ "$(cd "$dir" && rm out.txt err.txt && find . | sort | md5sum)" != "$before" ]; then
     echo "FAIL: run.sh --check-only wrote into the case folder"; fail=1
