@@ -20,7 +20,11 @@
 #   H3P_ANGLE      pitch [deg], nose-up positive (default -2: about the coupled state's tip twist)
 #   H3P_RUNS       run folders (default $FSI_VERIFY_DIR/runs, not tracked)
 #   H3P_REUSE=1    keep a level whose RUN/case/log.pitch finished instead of redoing it
-#   H3D_RUNS, H3D_ALGORITHM  the rigid study's run folders and algorithm (as hydrofoil-cgrid)
+#   H3D_RUNS, H3D_ALGORITHM, H3D_SCHEME, H3D_ROOT_WALL  the rigid study's run folders and model
+#                  (as hydrofoil-cgrid: upwind or linearUpwind, wall or slip; default the
+#                  first-order no-slip study): each level starts from that model's converged flow
+#                  and keeps its settings (scheme, relaxation, root wall); run folders and the
+#                  model label carry them (turbulent-SCHEME-ALGORITHM-cgrid[-slip]-pitchANGLE)
 set -euo pipefail
 : "${FSI_VERIFY_DIR:?run through scripts/verify hydrofoil-pitch}"
 root=${FSI_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}
@@ -29,16 +33,18 @@ export LD_LIBRARY_PATH=${FSI_BUILD_DIR:-$root/build}/lib${LD_LIBRARY_PATH:+:$LD_
 angle=${H3P_ANGLE:--2}
 runs=${H3P_RUNS:-$FSI_VERIFY_DIR/runs}
 rigidRuns=${H3D_RUNS:-$root/verification/hydrofoil-3d-rigid/runs}
-algorithm=${H3D_ALGORITHM:-simplec}
+algorithm=${H3D_ALGORITHM:-simplec} scheme=${H3D_SCHEME:-upwind} rootWall=${H3D_ROOT_WALL:-wall}
 reuse=${H3P_REUSE:-0}
 np=2
 die() { echo "error: hydrofoil-pitch: $*" >&2; exit 2; }
 awk -v a="$angle" 'BEGIN { exit !(a ~ /^[-+]?[0-9]*\.?[0-9]+([eE][-+]?[0-9]+)?$/ && a != 0 && a >= -15 && a <= 15) }' ||
   die "H3P_ANGLE='$angle' must be a pitch in degrees, non-zero, within -15..15 (e.g. -2)"
 case "$algorithm" in simple|simplec) ;; *) die "H3D_ALGORITHM='$algorithm' must be simple or simplec" ;; esac
+case "$scheme" in upwind|linearUpwind) ;; *) die "H3D_SCHEME='$scheme' must be upwind or linearUpwind" ;; esac
+case "$rootWall" in wall) suffix="" ;; slip) suffix=-slip ;; *) die "H3D_ROOT_WALL='$rootWall' must be wall or slip" ;; esac
 levels="coarse medium fine"
 for level in $levels; do
-  src=$rigidRuns/turbulent-upwind-$algorithm-$level
+  src=$rigidRuns/turbulent-$scheme-$algorithm$suffix-$level
   [ -f "$src/rigid/rigid.csv" ] ||
     die "no rigid flow $src/rigid/rigid.csv for $level (run scripts/verify hydrofoil-3d-rigid first)"
 done
@@ -47,8 +53,8 @@ mkdir -p "$runs"
 
 folders=()
 for level in $levels; do
-  src=$rigidRuns/turbulent-upwind-$algorithm-$level
-  r=$runs/pitch$angle-$algorithm-$level c=$runs/pitch$angle-$algorithm-$level/case
+  src=$rigidRuns/turbulent-$scheme-$algorithm$suffix-$level
+  r=$runs/pitch$angle-$scheme-$algorithm$suffix-$level c=$r/case
   if [ "$reuse" = 1 ] && grep -q '^End' "$c/log.pitch" 2> /dev/null; then
     echo "hydrofoil-pitch: reusing $r"
   else
@@ -106,7 +112,7 @@ PY
   folders+=("$r")
 done
 
-model=turbulent-upwind-$algorithm-cgrid-pitch$angle
+model=turbulent-$scheme-$algorithm-cgrid$suffix-pitch$angle
 "$FSI_PYTHON" "$root/scripts/history_gci.py" --rigid --model "$model" --out "$FSI_VERIFY_DIR/gci.csv" \
     --table "${folders[@]}"
 "$FSI_PYTHON" - "$FSI_VERIFY_DIR" "$np" "${folders[@]}" <<'PY'

@@ -17,8 +17,10 @@
 #                          converges monotonically (README "A steady second-order flow")
 #   --algorithm simple     classic SIMPLE (consistent no; relaxation p 0.3, U 0.7, turbulence
 #                          0.7) instead of the case's SIMPLEC (consistent yes; p 1, U 0.9,
-#                          turbulence 0.8; left as it is when the option is not given or is
-#                          simplec). SIMPLEC is the faster one where it is stable; on the older
+#                          turbulence 0.8, or 0.7 / 0.7 with linearUpwind). Not given: the
+#                          case's algorithm stays (SIMPLE.consistent); every relaxation factor
+#                          is set from the algorithm and the scheme, so a case set before with
+#                          another combination ends with this one's values. SIMPLEC is the faster one where it is stable; on the older
 #                          medium and fine cgrid meshes it is not (README "The tip gap's
 #                          re-spaced cells": a growing two-iteration oscillation in the tip gap)
 #
@@ -61,14 +63,31 @@ case "$scheme" in
         done ;;
 esac
 sol() { foamDictionary "$case/system/fvSolution" -entry "$1" -set "$2" > /dev/null; }
-if [ "$algorithm" != simple ] && [ "$scheme" = linearUpwind ]; then
-    sol relaxationFactors/equations/U 0.7
-    sol 'relaxationFactors/equations/"(k|omega|ReThetat|gammaInt)"' 0.7
+# Every factor is set from (algorithm, scheme), so a case set before (e.g. linearUpwind, or
+# classic SIMPLE) gets the new combination's values, not a mix. Without --algorithm the case's
+# algorithm stays (SIMPLE.consistent yes: SIMPLEC).
+if [ -z "$algorithm" ]; then
+    consistent=$(foamDictionary "$case/system/fvSolution" -entry SIMPLE/consistent -value 2> /dev/null || echo no)
+    case "$consistent" in yes|on|true|1) algorithm=simplec ;; *) algorithm=simple ;; esac
+    given=""
+else
+    given=$algorithm
 fi
 if [ "$algorithm" = simple ]; then
     sol SIMPLE/consistent no
     sol relaxationFactors/fields/p 0.3
     sol relaxationFactors/equations/U 0.7
     sol 'relaxationFactors/equations/"(k|omega|ReThetat|gammaInt)"' 0.7
+else
+    sol SIMPLE/consistent yes
+    sol relaxationFactors/fields/p 1
+    if [ "$scheme" = linearUpwind ]; then
+        sol relaxationFactors/equations/U 0.7
+        sol 'relaxationFactors/equations/"(k|omega|ReThetat|gammaInt)"' 0.7
+    else
+        sol relaxationFactors/equations/U 0.9
+        sol 'relaxationFactors/equations/"(k|omega|ReThetat|gammaInt)"' 0.8
+    fi
 fi
+algorithm=$given
 echo "flow=$flow scheme=$scheme${algorithm:+ algorithm=$algorithm}"

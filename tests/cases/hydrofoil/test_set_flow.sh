@@ -5,6 +5,8 @@
 #  - linearUpwind under SIMPLEC relaxes U and the turbulence fields by 0.7 (the turned foil's
 #    slow cycle, README "A steady second-order flow"), p stays 1, consistent stays yes;
 #  - --algorithm simple: consistent no, p 0.3, U 0.7, turbulence 0.7, with either scheme;
+#  - applied again to a case set before, the new combination's factors, not a mix (linearUpwind
+#    then upwind: 0.9 / 0.8 again; --algorithm simple then simplec: consistent yes, p 1);
 #  - the flow model's turbulenceProperties is copied; a bad option: one line, exit 2.
 # usage: test_set_flow.sh WORKDIR
 set -euo pipefail
@@ -48,6 +50,15 @@ for scheme in upwind linearUpwind; do
     div="bounded Gauss upwind"; [ $scheme = upwind ] || div="bounded Gauss linearUpwind grad(U)"
     check "$c" "turbulent $scheme SIMPLE" "$div" no 0.3 0.7 0.7
 done
+
+c=$(fresh again); "$setFlow" "$c" --flow turbulent --scheme linearUpwind > /dev/null
+"$setFlow" "$c" --flow turbulent --scheme upwind > /dev/null
+check "$c" "linearUpwind, then upwind on the same case" "bounded Gauss upwind" yes 1 0.9 0.8
+"$setFlow" "$c" --flow turbulent --scheme upwind --algorithm simple > /dev/null
+"$setFlow" "$c" --flow turbulent --scheme upwind > /dev/null
+check "$c" "SIMPLE, then no --algorithm: SIMPLE stays" "bounded Gauss upwind" no 0.3 0.7 0.7
+"$setFlow" "$c" --flow turbulent --scheme upwind --algorithm simplec > /dev/null
+check "$c" "SIMPLE, then --algorithm simplec" "bounded Gauss upwind" yes 1 0.9 0.8
 
 set +e
 msg=$("$setFlow" --check-only --scheme quick 2>&1); rc=$?
