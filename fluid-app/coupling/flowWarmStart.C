@@ -11,16 +11,11 @@
 #include <utility>
 #include <vector>
 
-namespace
-{
-
-// The turbulence fields (coupledPatches.H) are extrapolated with the flow when present.
-// (A turbulence field's wall function can only be evaluated inside correct(): extrapolated
-// turbulence fields update their processor patches only, coupledPatches.H. Evaluating all of
-// them failed with "request for volScalarField::Internal kOmegaSST:G failed" at the coupled
-// run's third solve, the first extrapolated one.)
-
-} // namespace
+// The turbulence fields (coupledPatches.H) are extrapolated with the flow when present. A
+// turbulence field's wall function can only be evaluated inside correct(), so extrapolated
+// turbulence fields update their processor patches only (evaluateCoupledPatches): evaluating
+// all of them failed with "request for volScalarField::Internal kOmegaSST:G failed" at the
+// coupled run's third solve, the first extrapolated one.
 
 
 Foam::flowWarmStart::Settings Foam::flowWarmStart::Settings::read
