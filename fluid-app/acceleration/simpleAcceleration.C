@@ -146,7 +146,6 @@ void Foam::simpleAcceleration::pack(std::vector<double>& s) const
 
 void Foam::simpleAcceleration::unpack(const std::vector<double>& s)
 {
-    const label nC = U_.size();
     std::size_t k = 0;
     vectorField& u = U_.primitiveFieldRef();
     for (direction c = 0; c < 3; ++c)
@@ -189,7 +188,6 @@ void Foam::simpleAcceleration::unpack(const std::vector<double>& s)
             v = s[k++];
         }
     }
-    (void)nC;
     U_.correctBoundaryConditions();
     p_.correctBoundaryConditions();
 }
