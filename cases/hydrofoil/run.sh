@@ -172,8 +172,6 @@ case "$launch" in mpmd|port) ;; *) die "--launch must be mpmd or port" ;; esac
 case "$fluidMesh" in ""|snappy|cgrid) ;; *) die "--fluid-mesh must be cgrid or snappy (got '$fluidMesh')" ;; esac
 case "$algorithm" in ""|simple|simplec) ;; *) die "--algorithm must be simple or simplec (got '$algorithm')" ;; esac
 case "$rootWall" in wall|slip) ;; *) die "--root-wall must be wall (the paper's no-slip tunnel) or slip (got '$rootWall')" ;; esac
-[ -z "$acceleration" ] || [[ "$acceleration" =~ ^(none|anderson(:([1-9]|[1-4][0-9]|50))?)$ ]] ||
-  die "--simple-acceleration '$acceleration' must be none or anderson[:DEPTH], DEPTH in 1..50 (e.g. anderson:5)"
 # The fluid mesh of this run: a new one (--fluid-mesh, default cgrid) or the one of --mesh-from /
 # --restart; the model follows the mesh unless given (tools/meshModel.sh; README, "The case
 # default"): k-omega SST with SIMPLEC on the boundary-layer mesh (classic SIMPLE on an older
@@ -191,6 +189,7 @@ flow=${flow:-$defaultFlow} algorithm=${algorithm:-$defaultAlgorithm}
 [ "$algorithm" != simplec ] || algorithm=""
 "$FSI_ROOT/cases/hydrofoil/tools/setFlow.sh" --check-only --flow "$flow" --scheme "$scheme" \
     ${algorithm:+--algorithm "$algorithm"}
+"$FSI_ROOT/cases/hydrofoil/tools/fluidCase.sh" --check-only ${acceleration:+--simple-acceleration "$acceleration"}
 # positive VALUE [UPPER]: VALUE is a number > 0 (and < UPPER)
 positive() { awk -v v="$1" -v u="${2:-}" 'BEGIN{exit !(v ~ /^[0-9.eE+-]+$/ && v + 0 > 0 && (u == "" || v + 0 < u + 0))}'; }
 [ -z "$band" ] || positive "$band" 1 || die "--band-tolerance '$band' must be a number in (0, 1), e.g. 1e-2"

@@ -101,15 +101,8 @@ void Foam::simpleAcceleration::reset()
 }
 
 
-void Foam::simpleAcceleration::pack(std::vector<double>& s) const
+std::size_t Foam::simpleAcceleration::packCells(std::vector<double>& s) const
 {
-    const label nC = U_.size();
-    label nB = 0;
-    forAll(phi_.boundaryField(), patchi)
-    {
-        nB += phi_.boundaryField()[patchi].size();
-    }
-    s.resize(std::size_t((4 + scalarNames_.size())*nC + phi_.size() + nB));
     std::size_t k = 0;
     const vectorField& u = U_.primitiveField();
     for (direction c = 0; c < 3; ++c)
@@ -123,6 +116,20 @@ void Foam::simpleAcceleration::pack(std::vector<double>& s) const
     {
         s[k++] = v;
     }
+    return k;
+}
+
+
+void Foam::simpleAcceleration::pack(std::vector<double>& s) const
+{
+    const label nC = U_.size();
+    label nB = 0;
+    forAll(phi_.boundaryField(), patchi)
+    {
+        nB += phi_.boundaryField()[patchi].size();
+    }
+    s.resize(std::size_t((4 + scalarNames_.size())*nC + phi_.size() + nB));
+    std::size_t k = packCells(s);
     for (const word& name : scalarNames_)
     {
         for (const scalar v : U_.mesh().lookupObject<volScalarField>(name).primitiveField())
@@ -195,10 +202,13 @@ void Foam::simpleAcceleration::unpack(const std::vector<double>& s)
 
 void Foam::simpleAcceleration::beforeIteration()
 {
-    if (mixer_)
+    if (!mixer_)
     {
-        pack(start_);
+        return;
     }
+    // only the measured part (U, p in the cells): the residual G(x) - x needs no more of x
+    start_.resize(std::size_t(4*U_.size()));
+    packCells(start_);
 }
 
 
@@ -221,10 +231,10 @@ fsi::fluid::AndersonMixer::Step Foam::simpleAcceleration::afterIteration()
     {
         residual_[i] = (state_[i] - start_[i])/(uRef*uRef);
     }
-    std::vector<double> mixed(state_);
+    mixedState_ = state_;   // state_ keeps the plain values (unpack bounds the turbulence fields)
     const fsi::fluid::AndersonMixer::Step step = mixer_->mix
     (
-        mixed,
+        mixedState_,
         residual_,
         [](std::vector<double>& v)
         {
@@ -241,7 +251,7 @@ fsi::fluid::AndersonMixer::Step Foam::simpleAcceleration::afterIteration()
     if (step.columns > 0)
     {
         ++mixed_;
-        unpack(mixed);
+        unpack(mixedState_);
     }
     return step;
 }

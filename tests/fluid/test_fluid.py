@@ -741,6 +741,8 @@ def t_simple_acceleration(a):
         check(rc == 0 and "(converged)" in log, "%s: rigid solve exit 0, residualControl reached" % name)
         forces[name] = total_force(log) if rc == 0 else [float("nan")] * 3
         mixed = re.findall(r"SIMPLE converged in (\d+) iterations \((\d+) Anderson-mixed", log)
+        n_it = re.findall(r"fsi: rigid solve: (\d+) SIMPLE iterations", log)
+        print("%s: %s SIMPLE iterations" % (name, n_it[-1] if n_it else "?"), flush=True)
         if name != "plain":
             check(bool(mixed) and int(mixed[-1][1]) > 0,
                   "%s: iterations Anderson-mixed (log: %s)" % (name, mixed[-1] if mixed else "none"))

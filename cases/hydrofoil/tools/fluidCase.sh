@@ -22,6 +22,12 @@ set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 case_dir="$(cd "$here/.." && pwd)"
 die() { echo "error: fluidCase.sh: $*" >&2; exit 2; }
+# --check-only [--simple-acceleration A]: validates A only (exit 2 with a one-line error), for the
+# scripts that pass it on (run.sh, scripts/bench-fsi) before they write anything.
+checkOnly=0
+if [ "${1:-}" = --check-only ]; then
+  checkOnly=1; shift; set -- - - 1 "$@"
+fi
 [ $# -ge 3 ] || die "usage: fluidCase.sh DEST MESH_FLUID NP [--flow F] [--scheme S] [--algorithm simple] [--init-from SOURCE_CASE] [--root-wall wall|slip] [--simple-acceleration none|anderson[:DEPTH]]"
 dest=$1 meshFluid=$2 np=$3; shift 3
 initFrom="" rootWall=wall flowArgs=() acceleration=""
@@ -33,11 +39,12 @@ while [ $# -gt 0 ]; do
     *) flowArgs+=("$1"); shift ;;
   esac
 done
+[ -z "$acceleration" ] || [[ "$acceleration" =~ ^(none|anderson(:([1-9]|[1-4][0-9]|50))?)$ ]] ||
+  die "--simple-acceleration '$acceleration' must be none or anderson[:DEPTH], DEPTH in 1..50 (e.g. anderson:5)"
+[ "$checkOnly" = 0 ] || exit 0
 [ -d "$meshFluid/constant/polyMesh" ] || die "$meshFluid is not a fluid case with a mesh"
 [[ "$np" =~ ^[1-9][0-9]*$ ]] || die "NP '$np' must be a positive integer"
 case "$rootWall" in wall|slip) ;; *) die "--root-wall '$rootWall' must be wall (the paper's no-slip tunnel) or slip" ;; esac
-[ -z "$acceleration" ] || [[ "$acceleration" =~ ^(none|anderson(:([1-9]|[1-4][0-9]|50))?)$ ]] ||
-  die "--simple-acceleration '$acceleration' must be none or anderson[:DEPTH], DEPTH in 1..50 (e.g. anderson:5)"
 sourceRoot=0
 [ -z "$initFrom" ] || ! grep -q '^ *root$' "$initFrom/constant/polyMesh/boundary" 2> /dev/null || sourceRoot=1
 [ "$sourceRoot" = 0 ] || [ "$rootWall" = slip ] ||

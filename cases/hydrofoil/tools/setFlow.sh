@@ -66,14 +66,12 @@ sol() { foamDictionary "$case/system/fvSolution" -entry "$1" -set "$2" > /dev/nu
 # Every factor is set from (algorithm, scheme), so a case set before (e.g. linearUpwind, or
 # classic SIMPLE) gets the new combination's values, not a mix. Without --algorithm the case's
 # algorithm stays (SIMPLE.consistent yes: SIMPLEC).
-if [ -z "$algorithm" ]; then
+effective=$algorithm
+if [ -z "$effective" ]; then
     consistent=$(foamDictionary "$case/system/fvSolution" -entry SIMPLE/consistent -value 2> /dev/null || echo no)
-    case "$consistent" in yes|on|true|1) algorithm=simplec ;; *) algorithm=simple ;; esac
-    given=""
-else
-    given=$algorithm
+    case "$consistent" in yes|on|true|1) effective=simplec ;; *) effective=simple ;; esac
 fi
-if [ "$algorithm" = simple ]; then
+if [ "$effective" = simple ]; then
     sol SIMPLE/consistent no
     sol relaxationFactors/fields/p 0.3
     sol relaxationFactors/equations/U 0.7
@@ -89,5 +87,4 @@ else
         sol 'relaxationFactors/equations/"(k|omega|ReThetat|gammaInt)"' 0.8
     fi
 fi
-algorithm=$given
 echo "flow=$flow scheme=$scheme${algorithm:+ algorithm=$algorithm}"
