@@ -7,7 +7,7 @@
 #
 #   cases/hydrofoil/blcheck.sh --out RUNDIR [--preset coarse|medium|fine] [--flow turbulent]
 #       [--scheme upwind] [--np 2] [--max-iterations 3000] [--init-from BLCHECK_RUN]
-#       [--algorithm simple] [--band-tolerance B] [--root-wall wall|slip]
+#       [--algorithm simple] [--band-tolerance B] [--band-mean-tolerance M] [--root-wall wall|slip]
 #
 #   blcheck: preset=P cells=N motion=OK motion_max_nonorth_deg=X iterations=N converged=0|1
 #     in_the_mean=0|1 band=X yplus_max=X yplus_mean=X yplus_le1_pct=X tip_yplus_max=X lift_N=X drag_N=X
@@ -16,6 +16,8 @@
 # --init-from: the rigid solve starts from another blcheck.sh run's flow (e.g. the next coarser
 # preset; rigid.sh --init-from BLCHECK_RUN/rigid). --algorithm simple: classic SIMPLE (rigid.sh).
 # --band-tolerance B: the solve may also stop in the mean (rigid.sh; 0, the default: off).
+# --band-mean-tolerance M: the blocks' means may then differ by M (rigid.sh; 0, the default: the
+# solve's 1e-5).
 # --root-wall slip: the tunnel's root wall a slip wall (rigid.sh; default wall, no-slip).
 # Exit 1 when the motion check fails or the first-cell y+ exceeds 1 anywhere on the foil (the
 # mesh's promise); the line is printed either way. Cost: coarse about 9 min on 2 cores (mesh
@@ -23,7 +25,7 @@
 # Needs what mesh.sh and rigid.sh need (OpenFOAM v1912, gmsh, the build's bin/ on PATH).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-out="" preset=coarse flow=turbulent scheme=upwind np=2 maxIt=3000 initFrom="" algorithm="" band=0 rootWall=wall
+out="" preset=coarse flow=turbulent scheme=upwind np=2 maxIt=3000 initFrom="" algorithm="" band=0 bandMean=0 rootWall=wall
 die() { echo "error: blcheck.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
     case "$1" in
@@ -36,8 +38,9 @@ while [ $# -gt 0 ]; do
         --init-from) initFrom="$2"; shift 2 ;;
         --algorithm) algorithm="$2"; shift 2 ;;
         --band-tolerance) band="$2"; shift 2 ;;
+        --band-mean-tolerance) bandMean="$2"; shift 2 ;;
         --root-wall) rootWall="$2"; shift 2 ;;
-        -h|--help) sed -n '3,23p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        -h|--help) sed -n '3,25p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) die "unknown option '$1' (see --help)" ;;
     esac
 done
@@ -46,6 +49,8 @@ case "$preset" in coarse|medium|fine) ;; *) die "--preset must be coarse, medium
 "$here/tools/setFlow.sh" --check-only --flow "$flow" --scheme "$scheme" ${algorithm:+--algorithm "$algorithm"}
 awk -v b="$band" 'BEGIN{exit !(b ~ /^[0-9.eE+-]+$/ && b + 0 >= 0 && b + 0 < 1)}' ||
     die "--band-tolerance '$band' must be 0 (off) or in (0, 1)"
+awk -v m="$bandMean" 'BEGIN{exit !(m ~ /^[0-9.eE+-]+$/ && m + 0 >= 0 && m + 0 < 1)}' ||
+    die "--band-mean-tolerance '$bandMean' must be 0 (off) or in (0, 1)"
 case "$rootWall" in wall|slip) ;; *) die "--root-wall '$rootWall' must be wall (the paper's no-slip tunnel) or slip" ;; esac
 [ -z "$initFrom" ] || [ -f "$initFrom/rigid/rigid.csv" ] ||
     die "--init-from '$initFrom' is not a finished blcheck.sh run (no rigid/rigid.csv)"
@@ -64,8 +69,8 @@ nonorth=$(awk '/non-orthogonality Max/ {print $4; exit}' "$out/motion/log.checkM
 log "rigid solve ($flow, $scheme)"
 "$here/rigid.sh" --mesh "$out/mesh/fluid" --out "$out/rigid" --flow "$flow" --scheme "$scheme" \
     --np "$np" --max-iterations "$maxIt" ${initFrom:+--init-from "$(cd "$initFrom" && pwd)/rigid"} \
-    ${algorithm:+--algorithm "$algorithm"} --band-tolerance "$band" --root-wall "$rootWall" \
-    > "$out/log.rigid" 2>&1 ||
+    ${algorithm:+--algorithm "$algorithm"} --band-tolerance "$band" --band-mean-tolerance "$bandMean" \
+    --root-wall "$rootWall" > "$out/log.rigid" 2>&1 ||
     die "rigid.sh failed (see $out/log.rigid)"
 /usr/bin/python3 - "$out/rigid/rigid.csv" "$preset" "$motion" "${nonorth:-nan}" <<'EOP'
 import csv, sys
