@@ -14,7 +14,7 @@
 # `scripts/run cases/hydrofoil --help` prints run.sh's options and exits 0 without setup, build
 # or a run folder. And the FSI1 runner (cases/turek-hron-fsi1/run.sh, which scripts/run also
 # calls with --check-only first): exit 0 on valid options, a bad one refused in one line, nothing
-# written either way.
+# written either way. And rigid.sh / blcheck.sh refuse a bad --band-mean-tolerance the same way.
 set -uo pipefail
 work=${1:?usage: test_run_options.sh WORK}
 : "${FSI_ROOT:?set FSI_ROOT to the repository}"
@@ -131,4 +131,23 @@ fsi1check 2 --np-fluid 0
 fsi1check 2 --beam 3,3
 fsi1check 2 --relaxation -1
 fsi1check 2 --mapping rbf
+# rigid.sh and blcheck.sh (the rigid mesh studies): a bad --band-mean-tolerance refused in one
+# line naming it, exit 2, no run folder made
+fakeMesh=$work/fake-fluid-mesh
+rm -rf "$fakeMesh"; mkdir -p "$fakeMesh/constant/polyMesh"; : > "$fakeMesh/constant/polyMesh/owner"
+studyCheck() {   # studyCheck SCRIPT ARGS...: the script refuses ARGS before writing its --out
+  local script=$1 rc=0; shift
+  rm -rf "$work/study-out"
+  "$FSI_ROOT/cases/hydrofoil/$script" --out "$work/study-out" "$@" > "$work/study.out" 2> "$work/study.err" || rc=$?
+  if [ "$rc" -ne 2 ] || [ "$(wc -l < "$work/study.err")" -ne 1 ] || ! grep -q -- "--band-mean-tolerance" "$work/study.err"; then
+    echo "FAIL: $script $*: exit $rc, expected 2 and one line naming --band-mean-tolerance:"; cat "$work/study.err"; fail=1
+  elif [ -e "$work/study-out" ]; then
+    echo "FAIL: $script $*: made its run folder before refusing"; fail=1
+  else
+    echo "ok: $script $* -> $(cat "$work/study.err")"
+  fi
+}
+studyCheck rigid.sh --mesh "$fakeMesh" --band-tolerance 1e-3 --band-mean-tolerance 1.5
+studyCheck rigid.sh --mesh "$fakeMesh" --band-mean-tolerance 1e-4x
+studyCheck blcheck.sh --preset coarse --band-tolerance 1e-3 --band-mean-tolerance -1e-4
 exit $fail
