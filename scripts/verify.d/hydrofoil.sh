@@ -29,6 +29,10 @@
 #   HYDROFOIL_ROOT_WALL wall (default, the paper's tunnel) | slip: run.sh --root-wall
 #   HYDROFOIL_OSCILLATION_WINDOW  N: run.sh --oscillation-window N (honest coupled solves: no stop
 #                      at a turning point of the force; default unset, the case's off)
+#   HYDROFOIL_COUPLING_TOLERANCE  T [m]: run.sh --coupling-tolerance T (the interface tolerance
+#                      |r|/sqrt(n); default unset, the case's 5e-6). The coupled state carries an
+#                      error of about |last change| x r_last / r_previous in each quantity; near the
+#                      case's torsional divergence 5e-6 m was worth 0.5 % of lift (second order, coarse)
 #   HYDROFOIL_INIT_FROM  a path with LEVEL in it (e.g. .../turbulent-upwind-simple-LEVEL/rigid/case):
 #                      each level's fluid starts from that OpenFOAM case's solution (run.sh
 #                      --init-from), LEVEL replaced by the preset; must exist for every level
@@ -52,14 +56,17 @@ flow=${HYDROFOIL_FLOW:-laminar} scheme=${HYDROFOIL_SCHEME:-upwind} algorithm=${H
 rootWall=${HYDROFOIL_ROOT_WALL:-wall}
 initPattern=${HYDROFOIL_INIT_FROM:-}
 oscWindow=${HYDROFOIL_OSCILLATION_WINDOW:-}
+couplingTol=${HYDROFOIL_COUPLING_TOLERANCE:-}
 case "$fluidMesh" in snappy|cgrid) ;; *) echo "error: hydrofoil: HYDROFOIL_FLUID_MESH='$fluidMesh' must be snappy or cgrid" >&2; exit 2 ;; esac
 # Every level's run options, before anything is meshed or run: run.sh --check-only names a bad
-# value (HYDROFOIL_FLOW/SCHEME/ALGORITHM/ROOT_WALL/OSCILLATION_WINDOW, a missing init case) in one line
+# value (HYDROFOIL_FLOW/SCHEME/ALGORITHM/ROOT_WALL/OSCILLATION_WINDOW/COUPLING_TOLERANCE, a missing init
+# case) in one line
 runOptions() { # LEVEL: the run.sh options of that level (without --mesh-from) into opts
   opts=(--preset "$1" --material baseline --np-fluid "$npf" --np-solid "$nps" --timeout "$timeout"
         --flow "$flow" --scheme "$scheme" --root-wall "$rootWall")
   [ -z "$algorithm" ] || opts+=(--algorithm "$algorithm")
   [ -z "$oscWindow" ] || opts+=(--oscillation-window "$oscWindow")
+  [ -z "$couplingTol" ] || opts+=(--coupling-tolerance "$couplingTol")
   [ -z "$initPattern" ] || opts+=(--init-from "${initPattern//LEVEL/$1}")
 }
 for level in $levels; do
