@@ -23,7 +23,10 @@
 #   --init-from RUN   start from the solution of another run2d.sh run (RUN/case, e.g. the next
 #                     coarser level, same flow model), mapped with mapFields (nearest cell):
 #                     grid sequencing, fewer iterations; the stopping test is unchanged
-#   --algorithm simple  classic SIMPLE instead of the case's SIMPLEC (tools/setFlow.sh)
+#   --algorithm simple  classic SIMPLE instead of the case's SIMPLEC (tools/setFlow.sh). Under
+#                     SIMPLEC the section keeps U 0.9 / turbulence 0.8 with either scheme
+#                     (setFlow.sh --relaxation; the 3-D case's 0.7 for linearUpwind leaves the
+#                     section's cycle in place and took level 1 to the 8 000-iteration cap)
 #   --band-tolerance B  the solve may also stop in the mean (fsiDict rigid.bandTolerance, blocks
 #                     of 100 iterations; ../rigid.sh): for classic SIMPLE's force wander or a
 #                     SIMPLEC limit cycle; C_L, C_D, C_M and y+ are then the mean flow's (fluid-app
@@ -69,7 +72,7 @@ while [ $# -gt 0 ]; do
         --algorithm) algorithm="$2"; shift 2 ;;
         --band-tolerance) band="$2"; shift 2 ;;
         --band-window) bandWindow="$2"; shift 2 ;;
-        -h|--help) sed -n '3,40p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        -h|--help) sed -n '3,43p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) die "unknown option '$1' (see --help)" ;;
     esac
 done
@@ -126,7 +129,9 @@ log "level $level: $cells cells, $foilFaces foil faces, max non-orthogonality $n
 # ---- case set-up --------------------------------------------------------------------------
 cp -r "$here/../fluid/0.orig" "$case/0"
 rm -f "$case/0/pointDisplacement"
-"$here/../tools/setFlow.sh" "$case" --flow "$flow" --scheme "$scheme" ${algorithm:+--algorithm "$algorithm"} > /dev/null
+relax=(); [ "$algorithm" = simple ] || relax=(--relaxation 0.9/0.8)
+"$here/../tools/setFlow.sh" "$case" --flow "$flow" --scheme "$scheme" ${algorithm:+--algorithm "$algorithm"} \
+    ${relax[@]+"${relax[@]}"} > /dev/null
 fd() { foamDictionary "$case/$1" -entry "$2" -set "$3" > /dev/null; }
 if [ -n "$tu$lscale" ]; then   # both given and checked with the options above
     read -r kIn omegaIn < <("$py" -c "import math, sys

@@ -4,6 +4,7 @@
 #
 #   cases/hydrofoil/tools/setFlow.sh CASE [--flow laminar|transition|turbulent]
 #                                         [--scheme upwind|linearUpwind] [--algorithm simple|simplec]
+#                                         [--relaxation U/T]
 #
 #   --flow laminar      the paper's model (default)
 #          transition   Langtry-Menter kOmegaSSTLM (needs first-cell y+ <= 1)
@@ -23,6 +24,10 @@
 #                          another combination ends with this one's values. SIMPLEC is the faster one where it is stable; on the older
 #                          medium and fine cgrid meshes it is not (README "The tip gap's
 #                          re-spaced cells": a growing two-iteration oscillation in the tip gap)
+#   --relaxation U/T       the momentum (U) and turbulence (k, omega, ReThetat, gammaInt)
+#                          equations' relaxation factors in (0, 1] instead of the ones above,
+#                          e.g. 0.9/0.8: the 2-D section study's SIMPLEC factors with
+#                          linearUpwind (section2d/run2d.sh; 0.7 does not remove its cycle there)
 #
 # Copies fluid/flow/<flow> to CASE/constant/turbulenceProperties and sets divSchemes of
 # CASE/system/fvSchemes. The fields of every model are in fluid/0.orig (k, omega, nut,
@@ -34,18 +39,22 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 die() { echo "error: setFlow.sh: $*" >&2; exit 2; }
 [ $# -ge 1 ] || die "usage: setFlow.sh CASE [--flow laminar|transition|turbulent] [--scheme upwind|linearUpwind]"
 case="$1"; shift   # --check-only: no case
-flow=laminar scheme=upwind algorithm=""
+flow=laminar scheme=upwind algorithm="" relaxation=""
 while [ $# -gt 0 ]; do
     case "$1" in
         --flow) flow="$2"; shift 2 ;;
         --scheme) scheme="$2"; shift 2 ;;
         --algorithm) algorithm="$2"; shift 2 ;;
-        *) die "unknown option '$1' (use --flow, --scheme, --algorithm)" ;;
+        --relaxation) relaxation="$2"; shift 2 ;;
+        *) die "unknown option '$1' (use --flow, --scheme, --algorithm, --relaxation)" ;;
     esac
 done
 case "$algorithm" in ""|simple|simplec) ;; *) die "--algorithm '$algorithm' unknown; use simple or simplec (the case's, also when left out)" ;; esac
 [ -f "$here/fluid/flow/$flow" ] || die "--flow '$flow' unknown; use laminar, transition or turbulent"
 case "$scheme" in upwind|linearUpwind) ;; *) die "--scheme '$scheme' unknown; use upwind or linearUpwind" ;; esac
+[ -z "$relaxation" ] || awk -v r="$relaxation" 'BEGIN { n = split(r, f, "/"); ok = n == 2;
+    for (i = 1; i <= n; ++i) ok = ok && f[i] ~ /^[0-9.eE+-]+$/ && f[i] + 0 > 0 && f[i] + 0 <= 1; exit !ok }' ||
+    die "--relaxation '$relaxation' must be U/T, two factors in (0, 1], e.g. 0.9/0.8"
 [ "$case" != --check-only ] || exit 0
 [ -f "$case/system/fvSchemes" ] || die "'$case' is not an OpenFOAM case (no system/fvSchemes)"
 export WM_PROJECT_DIR="${WM_PROJECT_DIR:-/usr/share/openfoam}"
@@ -86,5 +95,9 @@ else
         sol relaxationFactors/equations/U 0.9
         sol 'relaxationFactors/equations/"(k|omega|ReThetat|gammaInt)"' 0.8
     fi
+fi
+if [ -n "$relaxation" ]; then
+    sol relaxationFactors/equations/U "${relaxation%/*}"
+    sol 'relaxationFactors/equations/"(k|omega|ReThetat|gammaInt)"' "${relaxation#*/}"
 fi
 echo "flow=$flow scheme=$scheme${algorithm:+ algorithm=$algorithm}"

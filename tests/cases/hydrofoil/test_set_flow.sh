@@ -7,6 +7,8 @@
 #  - --algorithm simple: consistent no, p 0.3, U 0.7, turbulence 0.7, with either scheme;
 #  - applied again to a case set before, the new combination's factors, not a mix (linearUpwind
 #    then upwind: 0.9 / 0.8 again; --algorithm simple then simplec: consistent yes, p 1);
+#  - --relaxation U/T overrides the equations' factors (the 2-D section's 0.9 / 0.8), and a
+#    later call without it restores the scheme's;
 #  - the flow model's turbulenceProperties is copied; a bad option: one line, exit 2.
 # usage: test_set_flow.sh WORKDIR
 set -euo pipefail
@@ -60,6 +62,17 @@ check "$c" "SIMPLE, then no --algorithm: SIMPLE stays" "bounded Gauss upwind" no
 "$setFlow" "$c" --flow turbulent --scheme upwind --algorithm simplec > /dev/null
 check "$c" "SIMPLE, then --algorithm simplec" "bounded Gauss upwind" yes 1 0.9 0.8
 
+c=$(fresh relax); "$setFlow" "$c" --flow turbulent --scheme linearUpwind --relaxation 0.9/0.8 > /dev/null
+check "$c" "linearUpwind SIMPLEC --relaxation 0.9/0.8 (the 2-D section's)" "bounded Gauss linearUpwind grad(U)" yes 1 0.9 0.8
+"$setFlow" "$c" --flow turbulent --scheme linearUpwind > /dev/null
+check "$c" "--relaxation, then without it: the scheme's factors again" "bounded Gauss linearUpwind grad(U)" yes 1 0.7 0.7
+
+set +e
+msg=$("$setFlow" --check-only --relaxation 0.9 2>&1); rc=$?
+set -e
+[ $rc = 2 ] && [ "$(printf '%s\n' "$msg" | wc -l)" = 1 ] && [[ $msg == *"--relaxation '0.9'"* ]] ||
+    fail "a bad --relaxation: rc $rc, message '$msg'"
+echo "ok: a bad --relaxation is refused in one line"
 set +e
 msg=$("$setFlow" --check-only --scheme quick 2>&1); rc=$?
 set -e
