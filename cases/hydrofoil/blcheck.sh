@@ -27,6 +27,8 @@ set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 out="" preset=coarse flow=turbulent scheme=upwind np=2 maxIt=3000 initFrom="" algorithm="" band=0 bandMean=0 rootWall=wall
 die() { echo "error: blcheck.sh: $*" >&2; exit 2; }
+# fraction VALUE: VALUE is 0 or a number in (0, 1)
+fraction() { awk -v v="$1" 'BEGIN{exit !(v ~ /^[0-9.eE+-]+$/ && v + 0 >= 0 && v + 0 < 1)}'; }
 while [ $# -gt 0 ]; do
     case "$1" in
         --out) out="$2"; shift 2 ;;
@@ -47,9 +49,9 @@ done
 [ -n "$out" ] || die "--out RUNDIR is required (a run folder outside git)"
 case "$preset" in coarse|medium|fine) ;; *) die "--preset must be coarse, medium or fine" ;; esac
 "$here/tools/setFlow.sh" --check-only --flow "$flow" --scheme "$scheme" ${algorithm:+--algorithm "$algorithm"}
-awk -v b="$band" 'BEGIN{exit !(b ~ /^[0-9.eE+-]+$/ && b + 0 >= 0 && b + 0 < 1)}' ||
+fraction "$band" ||
     die "--band-tolerance '$band' must be 0 (off) or in (0, 1)"
-awk -v m="$bandMean" 'BEGIN{exit !(m ~ /^[0-9.eE+-]+$/ && m + 0 >= 0 && m + 0 < 1)}' ||
+fraction "$bandMean" ||
     die "--band-mean-tolerance '$bandMean' must be 0 (off) or in (0, 1)"
 case "$rootWall" in wall|slip) ;; *) die "--root-wall '$rootWall' must be wall (the paper's no-slip tunnel) or slip" ;; esac
 [ -z "$initFrom" ] || [ -f "$initFrom/rigid/rigid.csv" ] ||

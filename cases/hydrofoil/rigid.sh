@@ -44,6 +44,8 @@ set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 mesh="" out="" flow=laminar scheme=upwind np=2 tol=1e-5 maxIt=3000 initFrom="" algorithm="" band=0 bandMean=0 rootWall=wall
 die() { echo "error: rigid.sh: $*" >&2; exit 2; }
+# fraction VALUE: VALUE is 0 or a number in (0, 1)
+fraction() { awk -v v="$1" 'BEGIN{exit !(v ~ /^[0-9.eE+-]+$/ && v + 0 >= 0 && v + 0 < 1)}'; }
 while [ $# -gt 0 ]; do
     case "$1" in
         --mesh) mesh="$2"; shift 2 ;;
@@ -68,11 +70,11 @@ done
 [[ "$np" =~ ^[1-9][0-9]*$ ]] || die "--np '$np' must be a positive integer"
 [[ "$maxIt" =~ ^[1-9][0-9]*$ ]] || die "--max-iterations '$maxIt' must be a positive integer"
 awk -v t="$tol" 'BEGIN{exit !(t + 0 > 0 && t + 0 < 1)}' || die "--tolerance '$tol' must be in (0, 1)"
-awk -v b="$band" 'BEGIN{exit !(b ~ /^[0-9.eE+-]+$/ && b + 0 >= 0 && b + 0 < 1)}' ||
+fraction "$band" ||
     die "--band-tolerance '$band' must be 0 (off) or in (0, 1)"
 [ "$maxIt" -ge 200 ] || awk -v b="$band" 'BEGIN{exit !(b + 0 == 0)}' ||
     die "--band-tolerance needs --max-iterations >= 200 (two blocks of 100)"
-awk -v m="$bandMean" 'BEGIN{exit !(m ~ /^[0-9.eE+-]+$/ && m + 0 >= 0 && m + 0 < 1)}' ||
+fraction "$bandMean" ||
     die "--band-mean-tolerance '$bandMean' must be 0 (off: the --tolerance) or in (0, 1)"
 "$here/tools/setFlow.sh" --check-only --flow "$flow" --scheme "$scheme" ${algorithm:+--algorithm "$algorithm"}
 case "$rootWall" in wall|slip) ;; *) die "--root-wall '$rootWall' must be wall (the paper's no-slip tunnel) or slip" ;; esac

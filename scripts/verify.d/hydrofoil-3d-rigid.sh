@@ -71,8 +71,11 @@ case "$algorithm" in simple|simplec) ;; *) echo "error: hydrofoil-3d-rigid: H3D_
 reuse=${H3D_REUSE:-0}
 rootWall=${H3D_ROOT_WALL:-wall}
 case "$rootWall" in wall) suffix="" ;; slip) suffix=-slip ;; *) echo "error: hydrofoil-3d-rigid: H3D_ROOT_WALL='$rootWall' must be wall or slip" >&2; exit 2 ;; esac
-band=${H3D_BAND:-$([ "$scheme" = linearUpwind ] && echo 1e-4 || echo 1e-3)}
-bandMean=${H3D_BAND_MEAN:-$([ "$scheme" = linearUpwind ] && echo 1e-4 || echo 0)}
+if [ "$scheme" = linearUpwind ]; then
+    band=${H3D_BAND:-1e-4} bandMean=${H3D_BAND_MEAN:-1e-4}
+else
+    band=${H3D_BAND:-1e-3} bandMean=${H3D_BAND_MEAN:-0}
+fi
 model=$flow-$scheme-$algorithm-cgrid$suffix
 np=2
 set -- $levels

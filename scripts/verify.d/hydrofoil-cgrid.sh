@@ -32,8 +32,10 @@ case "$algorithm" in simple|simplec) ;; *) echo "error: hydrofoil-cgrid: H3D_ALG
 case "$scheme" in upwind|linearUpwind) ;; *) echo "error: hydrofoil-cgrid: H3D_SCHEME='$scheme' must be upwind or linearUpwind" >&2; exit 2 ;; esac
 case "$rootWall" in wall) suffix="" ;; slip) suffix=-slip ;; *) echo "error: hydrofoil-cgrid: H3D_ROOT_WALL='$rootWall' must be wall or slip" >&2; exit 2 ;; esac
 model=turbulent-$scheme-$algorithm-cgrid$suffix-baseline
-[ "$scheme" != linearUpwind ] || export HYDROFOIL_OSCILLATION_WINDOW=${HYDROFOIL_OSCILLATION_WINDOW:-20}
-[ "$scheme" != linearUpwind ] || export HYDROFOIL_COUPLING_TOLERANCE=${HYDROFOIL_COUPLING_TOLERANCE:-1e-6}
+if [ "$scheme" = linearUpwind ]; then
+    export HYDROFOIL_OSCILLATION_WINDOW=${HYDROFOIL_OSCILLATION_WINDOW:-20}
+    export HYDROFOIL_COUPLING_TOLERANCE=${HYDROFOIL_COUPLING_TOLERANCE:-1e-6}
+fi
 export HYDROFOIL_FLUID_MESH=cgrid HYDROFOIL_FLOW=turbulent HYDROFOIL_SCHEME=$scheme
 export HYDROFOIL_ALGORITHM=$algorithm HYDROFOIL_ROOT_WALL=$rootWall
 export HYDROFOIL_INIT_FROM=$rigidRuns/turbulent-$scheme-$algorithm$suffix-LEVEL/rigid/case

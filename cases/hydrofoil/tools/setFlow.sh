@@ -81,23 +81,15 @@ if [ -z "$effective" ]; then
     case "$consistent" in yes|on|true|1) effective=simplec ;; *) effective=simple ;; esac
 fi
 if [ "$effective" = simple ]; then
-    sol SIMPLE/consistent no
-    sol relaxationFactors/fields/p 0.3
-    sol relaxationFactors/equations/U 0.7
-    sol 'relaxationFactors/equations/"(k|omega|ReThetat|gammaInt)"' 0.7
+    consistent=no relaxP=0.3 relaxU=0.7 relaxT=0.7
+elif [ "$scheme" = linearUpwind ]; then
+    consistent=yes relaxP=1 relaxU=0.7 relaxT=0.7
 else
-    sol SIMPLE/consistent yes
-    sol relaxationFactors/fields/p 1
-    if [ "$scheme" = linearUpwind ]; then
-        sol relaxationFactors/equations/U 0.7
-        sol 'relaxationFactors/equations/"(k|omega|ReThetat|gammaInt)"' 0.7
-    else
-        sol relaxationFactors/equations/U 0.9
-        sol 'relaxationFactors/equations/"(k|omega|ReThetat|gammaInt)"' 0.8
-    fi
+    consistent=yes relaxP=1 relaxU=0.9 relaxT=0.8
 fi
-if [ -n "$relaxation" ]; then
-    sol relaxationFactors/equations/U "${relaxation%/*}"
-    sol 'relaxationFactors/equations/"(k|omega|ReThetat|gammaInt)"' "${relaxation#*/}"
-fi
+[ -z "$relaxation" ] || relaxU=${relaxation%/*} relaxT=${relaxation#*/}
+sol SIMPLE/consistent "$consistent"
+sol relaxationFactors/fields/p "$relaxP"
+sol relaxationFactors/equations/U "$relaxU"
+sol 'relaxationFactors/equations/"(k|omega|ReThetat|gammaInt)"' "$relaxT"
 echo "flow=$flow scheme=$scheme${algorithm:+ algorithm=$algorithm}"
