@@ -33,6 +33,9 @@
 #                      |r|/sqrt(n); default unset, the case's 5e-6). The coupled state carries an
 #                      error of about |last change| x r_last / r_previous in each quantity; near the
 #                      case's torsional divergence 5e-6 m was worth 0.5 % of lift (second order, coarse)
+#   HYDROFOIL_BAND_TOLERANCE  B: run.sh --band-tolerance B (a solve without a steady state may be
+#                      accepted in the mean when its force stays within +-B |F| over two blocks;
+#                      default unset, the case's 2e-3)
 #   HYDROFOIL_BAND_MEAN  M: run.sh --band-mean-tolerance M (a solve without a steady state is
 #                      accepted in the mean when its two blocks' mean forces differ by <= M |F|;
 #                      default unset, the fluid accuracy asked). For a flow whose mean drifts by
@@ -61,10 +64,10 @@ rootWall=${HYDROFOIL_ROOT_WALL:-wall}
 initPattern=${HYDROFOIL_INIT_FROM:-}
 oscWindow=${HYDROFOIL_OSCILLATION_WINDOW:-}
 couplingTol=${HYDROFOIL_COUPLING_TOLERANCE:-}
-bandMean=${HYDROFOIL_BAND_MEAN:-}
+band=${HYDROFOIL_BAND_TOLERANCE:-} bandMean=${HYDROFOIL_BAND_MEAN:-}
 case "$fluidMesh" in snappy|cgrid) ;; *) echo "error: hydrofoil: HYDROFOIL_FLUID_MESH='$fluidMesh' must be snappy or cgrid" >&2; exit 2 ;; esac
 # Every level's run options, before anything is meshed or run: run.sh --check-only names a bad
-# value (HYDROFOIL_FLOW/SCHEME/ALGORITHM/ROOT_WALL/OSCILLATION_WINDOW/COUPLING_TOLERANCE/BAND_MEAN, a missing init
+# value (HYDROFOIL_FLOW/SCHEME/ALGORITHM/ROOT_WALL/OSCILLATION_WINDOW/COUPLING_TOLERANCE/BAND_TOLERANCE/BAND_MEAN, a missing init
 # case) in one line
 runOptions() { # LEVEL: the run.sh options of that level (without --mesh-from) into opts
   opts=(--preset "$1" --material baseline --np-fluid "$npf" --np-solid "$nps" --timeout "$timeout"
@@ -72,6 +75,7 @@ runOptions() { # LEVEL: the run.sh options of that level (without --mesh-from) i
   [ -z "$algorithm" ] || opts+=(--algorithm "$algorithm")
   [ -z "$oscWindow" ] || opts+=(--oscillation-window "$oscWindow")
   [ -z "$couplingTol" ] || opts+=(--coupling-tolerance "$couplingTol")
+  [ -z "$band" ] || opts+=(--band-tolerance "$band")
   [ -z "$bandMean" ] || opts+=(--band-mean-tolerance "$bandMean")
   [ -z "$initPattern" ] || opts+=(--init-from "${initPattern//LEVEL/$1}")
 }
