@@ -38,8 +38,8 @@
 #                      default unset, the case's 2e-3)
 #   HYDROFOIL_BAND_MEAN  M: run.sh --band-mean-tolerance M (a solve without a steady state is
 #                      accepted in the mean when its two blocks' mean forces differ by <= M |F|;
-#                      default unset, the fluid accuracy asked). For a flow whose mean drifts by
-#                      ~1e-4 per block (second order on the fine cgrid preset)
+#                      default unset, the fluid accuracy asked). For a flow that swings about a
+#                      mean (second order on the moved fine cgrid mesh: +-0.3 %, means to 5e-5)
 #   HYDROFOIL_INIT_FROM  a path with LEVEL in it (e.g. .../turbulent-upwind-simple-LEVEL/rigid/case):
 #                      each level's fluid starts from that OpenFOAM case's solution (run.sh
 #                      --init-from), LEVEL replaced by the preset; must exist for every level
