@@ -116,7 +116,10 @@
 #                                           continues from results/<run>/checkpoint/latest
 #                                           (scripts/fsi-restart-fluid + --restart), a run that
 #                                           never started starts; logs of earlier parts are kept
-#                                           as log.<run>.partN
+#                                           as log.<run>.partN. The fsiDict options given (--band-*,
+#                                           --oscillation-window, --max-fluid-iterations,
+#                                           --warm-start-*) are set again, so a continued run may
+#                                           change them; left out, the run's values stay
 #   --check-only                            validate the options (and the --mesh-from /
 #                                           --init-from folders) and exit: 0, or 2 with the
 #                                           one-line error; writes nothing (scripts/run calls
@@ -305,13 +308,15 @@ for m in "${runs[@]}"; do
     "$run/tools/fluidCase.sh" "$fluid" "$run/mesh/fluid" "$npf" --flow "$flow" --scheme "$scheme" \
         ${algorithm:+--algorithm "$algorithm"} ${initFrom:+--init-from "$initFrom"} --root-wall "$rootWall" \
         ${acceleration:+--simple-acceleration "$acceleration"}
-    # the options given, as fsiDict coupled/KEY
-    for kv in bandTolerance="$band" maxIterations="$maxFluidIt" bandMeanTolerance="$bandMean" \
-              bandReferenceForce="$bandRef" oscillationWindow="$oscWindow" bandWindow="$bandWindow" \
-              warmStart/flux="$wsFlux" warmStart/maxCoefficient="$wsMaxCoef"; do
-      [ -z "${kv#*=}" ] || foamDictionary "$fluid/system/fsiDict" -entry "coupled/${kv%%=*}" -set "${kv#*=}" > /dev/null
-    done
   fi
+  # the options given, as fsiDict coupled/KEY; also on --restart, so that a continued run can
+  # change them (e.g. a wider band for levels whose flow lost its steady state); options left
+  # out keep the fluid case's values
+  for kv in bandTolerance="$band" maxIterations="$maxFluidIt" bandMeanTolerance="$bandMean" \
+            bandReferenceForce="$bandRef" oscillationWindow="$oscWindow" bandWindow="$bandWindow" \
+            warmStart/flux="$wsFlux" warmStart/maxCoefficient="$wsMaxCoef"; do
+    [ -z "${kv#*=}" ] || foamDictionary "$fluid/system/fsiDict" -entry "coupled/${kv%%=*}" -set "${kv#*=}" > /dev/null
+  done
   parallel=""
   [ "$npf" -gt 1 ] && parallel=-parallel
   cfg=$run/$m.yaml
