@@ -25,7 +25,7 @@
 # (2026-12-06), the size of the coarse-medium difference the study measures;
 # HYDROFOIL_BAND_TOLERANCE and HYDROFOIL_BAND_MEAN as hydrofoil.sh, defaults 5e-3 and 1e-4 with
 # linearUpwind (the mean as the rigid study's H3D_BAND_MEAN): the fine level's moved mesh keeps
-# the force swinging by +-0.3-0.7 % (lift; period about 200 SIMPLE iterations), so at the fluid
+# the force swinging by +-0.3-0.7 % (lift; a two-iteration cycle), so at the fluid
 # accuracy 5e-5 and the case's band 2e-3 every one of its solves ran to the 400-iteration cap and
 # the level was never accepted (2026-12-06; cases/hydrofoil/README.md).
 set -euo pipefail
