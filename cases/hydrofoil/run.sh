@@ -99,6 +99,13 @@
 #                                           within the equal-accuracy targets on coarse and medium;
 #                                           2e-6 costs 2.3x the SIMPLE iterations on medium: README,
 #                                           "The first medium reference was off")
+#   --coupling-band-factor B                the coupling's widening for levels whose flow has no steady
+#                                           state (the solid configs' coupling.convergence.band_factor:
+#                                           an iteration whose fluid solve was accepted in the mean
+#                                           converges at max(tolerance, B b rms(u)), b the solve's
+#                                           relative band; default viscoelastic.yaml's 20, the library's
+#                                           2 in baseline/relaxed; >= 0, 0 = never widened: README,
+#                                           "Second order inside the coupled loop")
 #   --max-fluid-iterations N                cap on the SIMPLE iterations of one coupled fluid solve
 #                                           (fsiDict coupled/maxIterations; default the case's 400)
 #   --mapping-smoothing R                   radius [m] of the moving-least-squares smoothing of the
@@ -132,7 +139,7 @@ set -euo pipefail
 source "$FSI_ROOT/scripts/env.sh"
 
 preset=coarse material=both npf=2 nps=2 launch=mpmd tc=0.12 cli=0.5 end="" timeout=900 meshFrom="" restart=0 checkOnly=0
-flow="" scheme=upwind rootWall=wall algorithm="" fluidMesh="" initFrom="" band="" maxFluidIt="" fluidTol="" couplingTol="" bandWindow="" bandMean="" bandRef="" oscWindow="" wsFlux="" wsMaxCoef="" mapSmoothing="" acceleration=""
+flow="" scheme=upwind rootWall=wall algorithm="" fluidMesh="" initFrom="" band="" maxFluidIt="" fluidTol="" couplingTol="" bandFactor="" bandWindow="" bandMean="" bandRef="" oscWindow="" wsFlux="" wsMaxCoef="" mapSmoothing="" acceleration=""
 die() { echo "error: hydrofoil/run.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -162,6 +169,7 @@ while [ $# -gt 0 ]; do
     --warm-start-max-coefficient) [ $# -ge 2 ] || die "--warm-start-max-coefficient needs a number"; wsMaxCoef=$2; shift 2 ;;
     --fluid-tolerance) [ $# -ge 2 ] || die "--fluid-tolerance needs a value"; fluidTol=$2; shift 2 ;;
     --coupling-tolerance) [ $# -ge 2 ] || die "--coupling-tolerance needs a value in m"; couplingTol=$2; shift 2 ;;
+    --coupling-band-factor) [ $# -ge 2 ] || die "--coupling-band-factor needs a number >= 0"; bandFactor=$2; shift 2 ;;
     --max-fluid-iterations) [ $# -ge 2 ] || die "--max-fluid-iterations needs a value"; maxFluidIt=$2; shift 2 ;;
     --mapping-smoothing) [ $# -ge 2 ] || die "--mapping-smoothing needs a radius in m"; mapSmoothing=$2; shift 2 ;;
     --restart) restart=1; shift ;;
@@ -223,6 +231,10 @@ configsHave() {
 [ -z "$couplingTol" ] || positive "$couplingTol" 1e-3 ||
     die "--coupling-tolerance '$couplingTol' must be a length in m in (0, 1e-3), e.g. 2e-6"
 [ -z "$couplingTol" ] || configsHave --coupling-tolerance \
+    "'absolute_tolerance:' line under coupling.convergence" '^    absolute_tolerance: '
+[ -z "$bandFactor" ] || awk -v b="$bandFactor" 'BEGIN{exit !(b ~ /^[0-9.eE+-]+$/ && b + 0 >= 0 && b + 0 <= 1e3)}' ||
+    die "--coupling-band-factor '$bandFactor' must be a number in [0, 1000], e.g. 0 (never widen the coupling tolerance)"
+[ -z "$bandFactor" ] || configsHave --coupling-band-factor \
     "'absolute_tolerance:' line under coupling.convergence" '^    absolute_tolerance: '
 [ -z "$mapSmoothing" ] || awk -v r="$mapSmoothing" 'BEGIN{exit !(r ~ /^[0-9.eE+-]+$/ && r + 0 >= 0 && r + 0 < 1e-2)}' ||
     die "--mapping-smoothing '$mapSmoothing' must be a radius in m in [0, 1e-2), e.g. 2e-4 (0 = off)"
@@ -326,6 +338,14 @@ for m in "${runs[@]}"; do
   fi
   if [ -n "$couplingTol" ]; then
     sed -i "s/^\(    absolute_tolerance:\) *[0-9.eE+-]*/\1 $couplingTol/" "$cfg"
+  fi
+  if [ -n "$bandFactor" ]; then
+    # replace the config's band_factor line, or add one under absolute_tolerance
+    if grep -q '^    band_factor: ' "$cfg"; then
+      sed -i "s/^\(    band_factor:\) *[0-9.eE+-]*/\1 $bandFactor/" "$cfg"
+    else
+      sed -i "s/^\(    absolute_tolerance: .*\)$/\1\n    band_factor: $bandFactor/" "$cfg"
+    fi
   fi
   if [ -n "$mapSmoothing" ]; then
     sed -i "s/^\(    smoothing_radius:\) *[0-9.eE+-]*/\1 $mapSmoothing/" "$cfg"

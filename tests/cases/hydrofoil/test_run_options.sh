@@ -3,7 +3,8 @@
 # tests/cases/hydrofoil/test_run_options.sh WORK
 #
 # run.sh refuses bad values of --band-tolerance, --band-mean-tolerance, --band-reference-force,
-# --band-window, --oscillation-window, --fluid-tolerance, --coupling-tolerance, --warm-start-flux,
+# --band-window, --oscillation-window, --fluid-tolerance, --coupling-tolerance,
+# --coupling-band-factor, --warm-start-flux,
 # --mapping-smoothing, --max-fluid-iterations, --fluid-mesh, --algorithm, --root-wall and
 # --simple-acceleration (and a --fluid-mesh
 # that contradicts the mesh of --mesh-from) before it writes anything:
@@ -49,6 +50,8 @@ check --oscillation-window 2
 check --band-window 5
 check --coupling-tolerance 0
 check --warm-start-flux copied
+check --coupling-band-factor -1
+check --coupling-band-factor twenty
 check --coupling-tolerance 5e-3   # a length in m: 5 mm is no tolerance
 check --band-window 300   # 2 x 300 > the case's cap of 400
 check --mapping-smoothing -1e-4
@@ -74,7 +77,7 @@ dir=$work/run
 rm -rf "$dir"; mkdir -p "$dir"; cp -r "$FSI_ROOT/cases/hydrofoil/." "$dir/"
 before=$(cd "$dir" && find . | sort | md5sum)
 if ! (cd "$dir" && ./run.sh --check-only --material baseline --scheme linearUpwind --root-wall slip \
-        --oscillation-window 20 --simple-acceleration anderson:5 > out.txt 2> err.txt); then
+        --oscillation-window 20 --simple-acceleration anderson:5 --coupling-band-factor 0 > out.txt 2> err.txt); then
     echo "FAIL: run.sh --check-only with valid options: non-zero exit"; cat "$dir/err.txt"; fail=1
 elif [ "$(cd "$dir" && rm out.txt err.txt && find . | sort | md5sum)" != "$before" ]; then
     echo "FAIL: run.sh --check-only wrote into the case folder"; fail=1
