@@ -27,8 +27,6 @@ set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 out="" preset=coarse flow=turbulent scheme=upwind np=2 maxIt=3000 initFrom="" algorithm="" band=0 bandMean=0 rootWall=wall
 die() { echo "error: blcheck.sh: $*" >&2; exit 2; }
-# fraction VALUE: VALUE is 0 or a number in (0, 1)
-fraction() { awk -v v="$1" 'BEGIN{exit !(v ~ /^[0-9.eE+-]+$/ && v + 0 >= 0 && v + 0 < 1)}'; }
 while [ $# -gt 0 ]; do
     case "$1" in
         --out) out="$2"; shift 2 ;;
@@ -48,12 +46,11 @@ while [ $# -gt 0 ]; do
 done
 [ -n "$out" ] || die "--out RUNDIR is required (a run folder outside git)"
 case "$preset" in coarse|medium|fine) ;; *) die "--preset must be coarse, medium or fine" ;; esac
-"$here/tools/setFlow.sh" --check-only --flow "$flow" --scheme "$scheme" ${algorithm:+--algorithm "$algorithm"}
-fraction "$band" ||
-    die "--band-tolerance '$band' must be 0 (off) or in (0, 1)"
-fraction "$bandMean" ||
-    die "--band-mean-tolerance '$bandMean' must be 0 (off) or in (0, 1)"
-case "$rootWall" in wall|slip) ;; *) die "--root-wall '$rootWall' must be wall (the paper's no-slip tunnel) or slip" ;; esac
+# the rigid solve's options, checked before anything is meshed (rigid.sh names the option)
+rigidOptions=(--flow "$flow" --scheme "$scheme" --np "$np" --max-iterations "$maxIt"
+    ${algorithm:+--algorithm "$algorithm"} --band-tolerance "$band" --band-mean-tolerance "$bandMean"
+    --root-wall "$rootWall")
+"$here/rigid.sh" --check-only "${rigidOptions[@]}" || exit 2
 [ -z "$initFrom" ] || [ -f "$initFrom/rigid/rigid.csv" ] ||
     die "--init-from '$initFrom' is not a finished blcheck.sh run (no rigid/rigid.csv)"
 command -v fluid-app > /dev/null || die "fluid-app is not on PATH (put the build's bin/ first)"
@@ -69,10 +66,8 @@ motion=OK
     --tip-deflection 0.030 --bending beam > "$out/log.motion" 2>&1 || motion=FAILED
 nonorth=$(awk '/non-orthogonality Max/ {print $4; exit}' "$out/motion/log.checkMesh" 2>/dev/null || true)
 log "rigid solve ($flow, $scheme)"
-"$here/rigid.sh" --mesh "$out/mesh/fluid" --out "$out/rigid" --flow "$flow" --scheme "$scheme" \
-    --np "$np" --max-iterations "$maxIt" ${initFrom:+--init-from "$(cd "$initFrom" && pwd)/rigid"} \
-    ${algorithm:+--algorithm "$algorithm"} --band-tolerance "$band" --band-mean-tolerance "$bandMean" \
-    --root-wall "$rootWall" > "$out/log.rigid" 2>&1 ||
+"$here/rigid.sh" --mesh "$out/mesh/fluid" --out "$out/rigid" "${rigidOptions[@]}" \
+    ${initFrom:+--init-from "$(cd "$initFrom" && pwd)/rigid"} > "$out/log.rigid" 2>&1 ||
     die "rigid.sh failed (see $out/log.rigid)"
 /usr/bin/python3 - "$out/rigid/rigid.csv" "$preset" "$motion" "${nonorth:-nan}" <<'EOP'
 import csv, sys

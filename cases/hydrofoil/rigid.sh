@@ -6,7 +6,7 @@
 #   cases/hydrofoil/rigid.sh --mesh DIR/fluid --out RUNDIR [--flow laminar|transition|turbulent]
 #       [--scheme upwind|linearUpwind] [--np 2] [--tolerance 1e-5] [--max-iterations 3000]
 #       [--init-from RUN] [--algorithm simple] [--band-tolerance B] [--band-mean-tolerance M]
-#       [--root-wall wall|slip]
+#       [--root-wall wall|slip] [--check-only]
 #
 #   --tolerance T        stop when the estimated force error is <= T |F|, held 100 iterations
 #                        (fsiDict rigid/estimateForceError; the 2-D section mode's criterion)
@@ -32,6 +32,9 @@
 #                        flow whose mean creeps by more than T per block long after the
 #                        discretization error is settled (the second-order fine cgrid level:
 #                        1e-5..6e-5 |F| per 100 iterations, README "A steady second-order flow")
+#   --check-only         validate the options' values and exit: 0, or 2 with the one-line error;
+#                        writes nothing and needs neither --mesh, --out nor fluid-app (blcheck.sh
+#                        calls it before it meshes)
 #
 # Writes RUNDIR/case (the OpenFOAM case, tools/fluidCase.sh) and RUNDIR/rigid.csv, one row:
 # cells, flow, scheme, iterations, converged (in_the_mean 1: stopped by --band-tolerance, band
@@ -42,7 +45,7 @@
 # fluid-app must be on PATH (scripts/run and scripts/verify put the build's bin/ first).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-mesh="" out="" flow=laminar scheme=upwind np=2 tol=1e-5 maxIt=3000 initFrom="" algorithm="" band=0 bandMean=0 rootWall=wall
+mesh="" out="" flow=laminar scheme=upwind np=2 tol=1e-5 maxIt=3000 initFrom="" algorithm="" band=0 bandMean=0 rootWall=wall checkOnly=0
 die() { echo "error: rigid.sh: $*" >&2; exit 2; }
 # fraction VALUE: VALUE is 0 or a number in (0, 1)
 fraction() { awk -v v="$1" 'BEGIN{exit !(v ~ /^[0-9.eE+-]+$/ && v + 0 >= 0 && v + 0 < 1)}'; }
@@ -60,13 +63,14 @@ while [ $# -gt 0 ]; do
         --band-tolerance) band="$2"; shift 2 ;;
         --band-mean-tolerance) bandMean="$2"; shift 2 ;;
         --root-wall) rootWall="$2"; shift 2 ;;
-        -h|--help) sed -n '3,42p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        --check-only) checkOnly=1; shift ;;
+        -h|--help) sed -n '3,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) die "unknown option '$1' (see --help)" ;;
     esac
 done
-[ -f "$mesh/constant/polyMesh/owner" ] || [ -f "$mesh/constant/polyMesh/owner.gz" ] ||
+[ "$checkOnly" = 1 ] || [ -f "$mesh/constant/polyMesh/owner" ] || [ -f "$mesh/constant/polyMesh/owner.gz" ] ||
     die "--mesh '$mesh' has no constant/polyMesh; run mesh.sh first"
-[ -n "$out" ] || die "--out RUNDIR is required (a run folder outside git)"
+[ "$checkOnly" = 1 ] || [ -n "$out" ] || die "--out RUNDIR is required (a run folder outside git)"
 [[ "$np" =~ ^[1-9][0-9]*$ ]] || die "--np '$np' must be a positive integer"
 [[ "$maxIt" =~ ^[1-9][0-9]*$ ]] || die "--max-iterations '$maxIt' must be a positive integer"
 awk -v t="$tol" 'BEGIN{exit !(t + 0 > 0 && t + 0 < 1)}' || die "--tolerance '$tol' must be in (0, 1)"
@@ -80,6 +84,7 @@ fraction "$bandMean" ||
 case "$rootWall" in wall|slip) ;; *) die "--root-wall '$rootWall' must be wall (the paper's no-slip tunnel) or slip" ;; esac
 [ -z "$initFrom" ] || { [ -f "$initFrom/rigid.csv" ] && [ -d "$initFrom/case" ]; } ||
     die "--init-from '$initFrom' is not a finished rigid.sh run (no rigid.csv / case)"
+[ "$checkOnly" = 0 ] || exit 0
 command -v fluid-app > /dev/null || die "fluid-app not on PATH (build first; scripts/run sets PATH)"
 export WM_PROJECT_DIR="${WM_PROJECT_DIR:-/usr/share/openfoam}"
 export OMPI_MCA_btl_tcp_if_include=lo OMPI_MCA_oob_tcp_if_include=lo

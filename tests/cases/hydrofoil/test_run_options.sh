@@ -15,7 +15,8 @@
 # `scripts/run cases/hydrofoil --help` prints run.sh's options and exits 0 without setup, build
 # or a run folder. And the FSI1 runner (cases/turek-hron-fsi1/run.sh, which scripts/run also
 # calls with --check-only first): exit 0 on valid options, a bad one refused in one line, nothing
-# written either way. And rigid.sh / blcheck.sh refuse a bad --band-mean-tolerance the same way.
+# written either way. And rigid.sh / blcheck.sh refuse a bad --band-mean-tolerance the same way
+# (blcheck.sh through rigid.sh --check-only, which passes valid options).
 set -uo pipefail
 work=${1:?usage: test_run_options.sh WORK}
 : "${FSI_ROOT:?set FSI_ROOT to the repository}"
@@ -153,4 +154,11 @@ studyCheck() {   # studyCheck SCRIPT ARGS...: the script refuses ARGS before wri
 studyCheck rigid.sh --mesh "$fakeMesh" --band-tolerance 1e-3 --band-mean-tolerance 1.5
 studyCheck rigid.sh --mesh "$fakeMesh" --band-mean-tolerance 1e-4x
 studyCheck blcheck.sh --preset coarse --band-tolerance 1e-3 --band-mean-tolerance -1e-4
+# rigid.sh --check-only (what blcheck.sh calls before it meshes): valid options exit 0 without a mesh
+if "$FSI_ROOT/cases/hydrofoil/rigid.sh" --check-only --flow turbulent --scheme linearUpwind \
+        --band-tolerance 1e-3 --root-wall slip > "$work/study.out" 2> "$work/study.err"; then
+    echo "ok: rigid.sh --check-only with valid options: exit 0"
+else
+    echo "FAIL: rigid.sh --check-only with valid options:"; cat "$work/study.err"; fail=1
+fi
 exit $fail
