@@ -19,8 +19,9 @@
 # (flow-scheme-algorithm-cgrid[-slip]): a run replaces its own model's rows and keeps the others'.
 # Cost alone on 2 cores (2026-12-05): first order 30 min (500-600 iterations per level),
 # second order with the slip root wall 47 min with relaxation 0.9 / 0.8 (coarse from rest
-# 1 100, medium and fine 800 iterations); with 0.7 (tools/setFlow.sh since 2026-12-06) coarse
-# 1 500 and medium 1 800 iterations, 35 min for the two; the fine level ~1.6 s per iteration.
+# 1 100, medium and fine 800 iterations); with 0.7 (tools/setFlow.sh since 2026-12-06) and the
+# default bands 1e-4: coarse 1 000, medium 1 500, fine 2 100 iterations, about 1 h 50 min
+# (fine 57 min, 1.6 s per iteration; 2026-12-06).
 # State: verification/hydrofoil-3d-rigid/README.md.
 # Environment:
 #   H3D_LEVELS    presets, coarse to fine (default "coarse medium fine"; three needed)
