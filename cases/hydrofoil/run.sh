@@ -103,8 +103,8 @@
 #                                           state (the solid configs' coupling.convergence.band_factor:
 #                                           an iteration whose fluid solve was accepted in the mean
 #                                           converges at max(tolerance, B b rms(u)), b the solve's
-#                                           relative band; default viscoelastic.yaml's 20, the library's
-#                                           2 in baseline/relaxed; >= 0, 0 = never widened: README,
+#                                           relative band; default the configs' 20 (viscoelastic.yaml)
+#                                           and 2 (baseline/relaxed); >= 0, 0 = never widened: README,
 #                                           "Second order inside the coupled loop")
 #   --max-fluid-iterations N                cap on the SIMPLE iterations of one coupled fluid solve
 #                                           (fsiDict coupled/maxIterations; default the case's 400)
@@ -235,7 +235,7 @@ configsHave() {
 [ -z "$bandFactor" ] || awk -v b="$bandFactor" 'BEGIN{exit !(b ~ /^[0-9.eE+-]+$/ && b + 0 >= 0 && b + 0 <= 1e3)}' ||
     die "--coupling-band-factor '$bandFactor' must be a number in [0, 1000], e.g. 0 (never widen the coupling tolerance)"
 [ -z "$bandFactor" ] || configsHave --coupling-band-factor \
-    "'absolute_tolerance:' line under coupling.convergence" '^    absolute_tolerance: '
+    "'band_factor:' line under coupling.convergence" '^    band_factor: '
 [ -z "$mapSmoothing" ] || awk -v r="$mapSmoothing" 'BEGIN{exit !(r ~ /^[0-9.eE+-]+$/ && r + 0 >= 0 && r + 0 < 1e-2)}' ||
     die "--mapping-smoothing '$mapSmoothing' must be a radius in m in [0, 1e-2), e.g. 2e-4 (0 = off)"
 [ -z "$mapSmoothing" ] || configsHave --mapping-smoothing \
@@ -288,6 +288,9 @@ case "$material" in
   *) runs=("$material") ;;
 esac
 mkdir -p "$run/results"
+# setConfigNumber CFG KEY VALUE: CFG's line `    KEY: number` gets VALUE (its comment stays);
+# nothing when VALUE is empty (the option was not given)
+setConfigNumber() { [ -z "$3" ] || sed -i "s/^\(    $2:\) *[0-9.eE+-]*/\1 $3/" "$1"; }
 # endsLater RUN OUT: RUN is the viscoelastic run and --end lies beyond its last checkpointed level
 endsLater() {
   [ "$1" = viscoelastic ] && [ -n "$end" ] && [ -f "$2/checkpoint/latest" ] &&
@@ -333,23 +336,14 @@ for m in "${runs[@]}"; do
   [ "$npf" -gt 1 ] && parallel=-parallel
   cfg=$run/$m.yaml
   sed "s|@MESH@|$solidMesh|" "$run/solid/$m.yaml" > "$cfg"
+  # the solid-config options given (configsHave checked their lines above)
   if [ -n "$fluidTol" ]; then
-    sed -i "s/^\(    final: {force_tolerance:\) *[^}]*}/\1 $fluidTol}/; s/^\(    max_force_tolerance:\) *[0-9.eE+-]*/\1 $fluidTol/" "$cfg"
+    sed -i "s/^\(    final: {force_tolerance:\) *[^}]*}/\1 $fluidTol}/" "$cfg"
   fi
-  if [ -n "$couplingTol" ]; then
-    sed -i "s/^\(    absolute_tolerance:\) *[0-9.eE+-]*/\1 $couplingTol/" "$cfg"
-  fi
-  if [ -n "$bandFactor" ]; then
-    # replace the config's band_factor line, or add one under absolute_tolerance
-    if grep -q '^    band_factor: ' "$cfg"; then
-      sed -i "s/^\(    band_factor:\) *[0-9.eE+-]*/\1 $bandFactor/" "$cfg"
-    else
-      sed -i "s/^\(    absolute_tolerance: .*\)$/\1\n    band_factor: $bandFactor/" "$cfg"
-    fi
-  fi
-  if [ -n "$mapSmoothing" ]; then
-    sed -i "s/^\(    smoothing_radius:\) *[0-9.eE+-]*/\1 $mapSmoothing/" "$cfg"
-  fi
+  setConfigNumber "$cfg" max_force_tolerance "$fluidTol"
+  setConfigNumber "$cfg" absolute_tolerance "$couplingTol"
+  setConfigNumber "$cfg" band_factor "$bandFactor"
+  setConfigNumber "$cfg" smoothing_radius "$mapSmoothing"
   if [ -n "$end" ] && [ "$m" = viscoelastic ]; then
     sed -i "s|^    end: .*|    end: $end|; s|^    hit: .*|    hit: []|" "$cfg"
   fi
