@@ -20,6 +20,7 @@ Needs fluid-app, solid-app, blockMesh, gmsh, mpirun on PATH; FSI_ROOT for port m
 """
 import csv
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -45,12 +46,34 @@ def run_case(workdir, name, launch, *options):
         sys.exit("FAIL: %s: the coupled run failed (exit %d), logs in %s" % (name, rc, run))
     with open(os.path.join(run, "results", "summary.txt")) as f:
         sys.stdout.write(f.read())
+    check_cpu_accounting(run)
     levels = {}
     with open(os.path.join(run, "results", "benchmark.csv")) as f:
         for row in csv.DictReader(f):
             levels.setdefault(int(row["level"]), {})[row["quantity"]] = (
                 float(row["value"]), float(row["rel_error"]))
     return levels
+
+
+def check_cpu_accounting(run):
+    """The CPU time by program that scripts/bench-fsi splits a run's CPU by: solid-app's cpu_s in
+    summary.csv and fluid-app's closing line, each positive and at most its program's wall time
+    times the cores (every thread of a process counts; fluid-app starts before solid-app's
+    clock, hence the 60 s margin)."""
+    with open(os.path.join(run, "results", "summary.csv")) as f:
+        s = next(csv.DictReader(f))
+    solid, wall = float(s["cpu_s"]), float(s["wall_s"])
+    with open(os.path.join(run, "log.fluid")) as f:
+        m = re.findall(r"^fsi: CPU of the fluid ranks ([0-9.eE+-]+) s \(user \+ system, "
+                       r"summed over (\d+) rank", f.read(), re.M)
+    if not m:
+        sys.exit("FAIL: %s/log.fluid has no 'fsi: CPU of the fluid ranks' line" % run)
+    fluid, ranks = float(m[-1][0]), int(m[-1][1])
+    cores = os.cpu_count() or 1
+    print("CPU: solid-app %.2f s, fluid-app %.2f s (%d rank(s)); solid-app's wall %.2f s"
+          % (solid, fluid, ranks, wall))
+    if not (0 < solid <= 1.1 * wall * cores and 0 < fluid <= 1.1 * wall * cores + 60):
+        sys.exit("FAIL: CPU times outside (0, wall x cores]")
 
 
 def parse_tol(text):
