@@ -5,7 +5,7 @@
 # twist / 30 mm tip deflection (beam bending), solves the rigid foil (rigid.sh, SST upwind by
 # default) and prints one line with the cells, the motion check, the first-cell y+ and the loads:
 #
-#   cases/hydrofoil/blcheck.sh --out RUNDIR [--preset coarse|medium|fine] [--flow turbulent]
+#   cases/hydrofoil/blcheck.sh --out RUNDIR [--preset coarse|medium|fine|finer] [--flow turbulent]
 #       [--scheme upwind] [--np 2] [--max-iterations 3000] [--init-from BLCHECK_RUN]
 #       [--algorithm simple] [--band-tolerance B] [--band-mean-tolerance M] [--root-wall wall|slip]
 #
@@ -21,7 +21,8 @@
 # --root-wall slip: the tunnel's root wall a slip wall (rigid.sh; default wall, no-slip).
 # Exit 1 when the motion check fails or the first-cell y+ exceeds 1 anywhere on the foil (the
 # mesh's promise); the line is printed either way. Cost: coarse about 9 min on 2 cores (mesh
-# 20 s, motion 30 s, rigid solve 8 min), medium ~25 min, fine more than an hour.
+# 20 s, motion 30 s, rigid solve 8 min), medium ~25 min, fine more than an hour; finer (cgrid3d.py's
+# fourth level for the mesh studies, about 2.8 M cells) about 2.2 times fine per iteration.
 # Needs what mesh.sh and rigid.sh need (OpenFOAM v1912, gmsh, the build's bin/ on PATH).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -45,7 +46,7 @@ while [ $# -gt 0 ]; do
     esac
 done
 [ -n "$out" ] || die "--out RUNDIR is required (a run folder outside git)"
-case "$preset" in coarse|medium|fine) ;; *) die "--preset must be coarse, medium or fine" ;; esac
+case "$preset" in coarse|medium|fine|finer) ;; *) die "--preset must be coarse, medium, fine or finer (finer: the mesh studies' fourth level)" ;; esac
 # the rigid solve's options, checked before anything is meshed (rigid.sh names the option)
 rigidOptions=(--flow "$flow" --scheme "$scheme" --np "$np" --max-iterations "$maxIt"
     ${algorithm:+--algorithm "$algorithm"} --band-tolerance "$band" --band-mean-tolerance "$bandMean"

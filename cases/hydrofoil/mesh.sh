@@ -2,10 +2,12 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Geometry and meshes of the hydrofoil case (paper section 2) into a run folder outside git.
 #
-#   cases/hydrofoil/mesh.sh --out DIR [--preset coarse|medium|fine] [--tc 0.12] [--cli 0.5]
+#   cases/hydrofoil/mesh.sh --out DIR [--preset coarse|medium|fine|finer] [--tc 0.12] [--cli 0.5]
 #                           [--meanline a08|a08mod] [--layers N] [--np N]
 #                           [--fluid-only | --solid-only] [--curved]
 #                           [--fluid-mesh snappy|cgrid] [--te sharp|blunt]
+#   --preset finer: the mesh studies' fourth level (cgrid3d.py, about 2.8 M cells), with
+#   --fluid-mesh cgrid --fluid-only only (scripts/verify.d/hydrofoil-3d-rigid.sh H3D_LEVELS)
 #
 # Writes
 #   DIR/geometry/   section.csv, foil.stl (closed), foil.geo (Gmsh), snappy.stl (root extended)
@@ -48,8 +50,14 @@ while [ $# -gt 0 ]; do
     esac
 done
 [ -n "$out" ] || die "--out DIR is required (a run folder outside git, e.g. /tmp/hydrofoil-coarse)"
-[ -f "$here/fluid/system/presets/$preset" ] || die "--preset '$preset' unknown; use coarse, medium or fine"
 case "$fluidMesh" in snappy|cgrid) ;; *) die "--fluid-mesh '$fluidMesh' unknown; use snappy or cgrid" ;; esac
+# finer: the mesh studies' fourth level, a boundary-layer fluid mesh only (no snappy or solid preset)
+if [ "$preset" = finer ]; then
+    [ "$fluidMesh" = cgrid ] && [ "$doSolid" = 0 ] ||
+        die "--preset finer is a mesh-study level: --fluid-mesh cgrid --fluid-only only"
+else
+    [ -f "$here/fluid/system/presets/$preset" ] || die "--preset '$preset' unknown; use coarse, medium or fine (or finer, the mesh studies' level, with --fluid-mesh cgrid --fluid-only)"
+fi
 case "$te" in sharp|blunt) ;; *) die "--te '$te' unknown; use sharp or blunt" ;; esac
 [ "$fluidMesh" = cgrid ] || [ "$te" = sharp ] || die "--te applies to --fluid-mesh cgrid only (snappy meshes the section's blunt trailing edge)"
 [ -z "$layers" ] || [ "$fluidMesh" = snappy ] || die "--layers applies to --fluid-mesh snappy only (cgrid has its own layers)"
@@ -91,7 +99,7 @@ if [ "$doFluid" = 1 ]; then
     rm -rf "$case"
     mkdir -p "$case/constant/triSurface"
     cp -r "$here/fluid/system" "$here/fluid/constant" "$case/"
-    cp "$here/fluid/system/presets/$preset" "$case/system/meshParameters"
+    [ "$preset" = finer ] || cp "$here/fluid/system/presets/$preset" "$case/system/meshParameters"
     if [ "$fluidMesh" = cgrid ]; then
         /usr/bin/python3 "$here/tools/cgrid3d.py" --preset "$preset" --out "$case/cgrid" --tc "$tc" \
             --cli "$cli" --meanline "$meanline" --te "$te" | tee -a "$summary"

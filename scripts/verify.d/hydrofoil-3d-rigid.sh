@@ -24,7 +24,10 @@
 # (fine 57 min, 1.6 s per iteration; 2026-12-06).
 # State: verification/hydrofoil-3d-rigid/README.md.
 # Environment:
-#   H3D_LEVELS    presets, coarse to fine (default "coarse medium fine"; three needed)
+#   H3D_LEVELS    presets, coarse to fine (default "coarse medium fine"; three needed; "medium
+#                 fine finer" adds the fourth level, about 2.8 M cells, and writes its rows under
+#                 the model name with "-medium-fine-finer" appended; with H3D_REUSE=1 the medium
+#                 and fine runs of the default study are kept)
 #   H3D_FLOW      flow model (default turbulent: k-omega SST; see the README's flow models)
 #   H3D_SCHEME    convection scheme (default upwind: the second-order schemes have no steady
 #                 state at the root junction on this mesh, README "Rigid 3-D solve")
@@ -78,6 +81,8 @@ else
     band=${H3D_BAND:-1e-3} bandMean=${H3D_BAND_MEAN:-0}
 fi
 model=$flow-$scheme-$algorithm-cgrid$suffix
+# another triple of presets (e.g. "medium fine finer") is its own model block in the CSVs
+[ "$levels" = "coarse medium fine" ] || model+=-$(echo $levels | tr ' ' '-')
 np=2
 set -- $levels
 [ $# = 3 ] || { echo "error: hydrofoil-3d-rigid: H3D_LEVELS='$levels' must name three presets, coarse to fine" >&2; exit 2; }

@@ -28,7 +28,7 @@ construction; cgrid3d reports the first-cell heights per part of the foil.
 Patches (physical groups): inlet, outlet, walls (the four tunnel walls), foil (sides, tip,
 trailing-edge face: the FSI interface); volume group fluid.
 
-Usage: cgrid3d.py --preset coarse|medium|fine --out DIR [--tc 0.12 --cli 0.5 --meanline a08]
+Usage: cgrid3d.py --preset coarse|medium|fine|finer --out DIR [--tc 0.12 --cli 0.5 --meanline a08]
                   [--te sharp|blunt] [--full-span]
 Writes DIR/cgrid3d.msh and DIR/cgrid3d-mesh.txt (the parameters and counts, one line).
 Needs the `gmsh` binary (the triangulation of the section above the tip) and numpy.
@@ -68,7 +68,9 @@ COARSE = dict(n_side=40, n_te=4, n_wake=16, n_normal=36, y1=5.0e-6,
               dz_top=1.0e-3, growth_gap=1.4, dz_max_gap=2.5e-3,
               gap_relax_length=1.5e-3, h_relax=1.0e-3, growth_relax=1.0, growth_relax_wake=1.1,
               y1_tip=3.5e-6, tip_thinning=0.35, thin_length=1.5e-3, h_thin=2.0e-3)
-LEVELS = {"coarse": 0, "medium": 1, "fine": 2}
+# finer: a fourth level for the mesh studies only (about 2.8 M cells; the rigid 3-D study's
+# level beyond fine, scripts/verify.d/hydrofoil-3d-rigid.sh), not a case preset.
+LEVELS = {"coarse": 0, "medium": 1, "fine": 2, "finer": 3}
 
 
 def preset(name):
