@@ -20,6 +20,10 @@
 #   H3P_ANGLE      pitch [deg], nose-up positive (default -2: about the coupled state's tip twist)
 #   H3P_RUNS       run folders (default $FSI_VERIFY_DIR/runs, not tracked)
 #   H3P_REUSE=1    keep a level whose RUN/case/log.pitch finished instead of redoing it
+#   H3P_BAND, H3P_BAND_MEAN  the solve's bandTolerance / bandMeanTolerance (fsiDict; default: the
+#                  rigid flow's, i.e. the rigid study's H3D_BAND / H3D_BAND_MEAN): the turned
+#                  second-order medium and fine flows keep a slow swing of +-2e-4 |F| (2026-12-06)
+#                  and stop in the mean only with 2e-4 or more; the first-order rows ran with 1e-3
 #   H3D_RUNS, H3D_ALGORITHM, H3D_SCHEME, H3D_ROOT_WALL  the rigid study's run folders and model
 #                  (as hydrofoil-cgrid: upwind or linearUpwind, wall or slip; default the
 #                  first-order no-slip study): each level starts from that model's converged flow
@@ -35,6 +39,11 @@ runs=${H3P_RUNS:-$FSI_VERIFY_DIR/runs}
 rigidRuns=${H3D_RUNS:-$root/verification/hydrofoil-3d-rigid/runs}
 algorithm=${H3D_ALGORITHM:-simplec} scheme=${H3D_SCHEME:-upwind} rootWall=${H3D_ROOT_WALL:-wall}
 reuse=${H3P_REUSE:-0}
+band=${H3P_BAND:-} bandMean=${H3P_BAND_MEAN:-}
+for v in "$band" "$bandMean"; do
+  [ -z "$v" ] || awk -v b="$v" 'BEGIN { exit !(b ~ /^[0-9]*\.?[0-9]+([eE][-+]?[0-9]+)?$/ && b > 0 && b <= 0.1) }' ||
+    { echo "error: hydrofoil-pitch: H3P_BAND / H3P_BAND_MEAN '$v' must be a fraction of |F| in (0, 0.1], e.g. 5e-4" >&2; exit 2; }
+done
 np=2
 die() { echo "error: hydrofoil-pitch: $*" >&2; exit 2; }
 awk -v a="$angle" 'BEGIN { exit !(a ~ /^[-+]?[0-9]*\.?[0-9]+([eE][-+]?[0-9]+)?$/ && a != 0 && a >= -15 && a <= 15) }' ||
@@ -68,6 +77,8 @@ for level in $levels; do
       "$c/system/fsiDict" > /dev/null
     foamDictionary -entry coupled/warmStart -set "{ type previous; flux interpolated; }" \
       "$c/system/fsiDict" > /dev/null
+    [ -z "$band" ] || foamDictionary -entry coupled/bandTolerance -set "$band" "$c/system/fsiDict" > /dev/null
+    [ -z "$bandMean" ] || foamDictionary -entry coupled/bandMeanTolerance -set "$bandMean" "$c/system/fsiDict" > /dev/null
     foamDictionary -entry prescribed -set "{ type rotation; origin (0.3685 0 0); axis (0 0 1);
       angle $angle; steps 1; solveFlow true; }" "$c/system/fsiDict" > /dev/null
     foamDictionary -entry endTime -set 100000 "$c/system/controlDict" > /dev/null
