@@ -10,7 +10,8 @@
 # and the coupling iteration play no part: where the coupled state refines badly and this study
 # does too, the cause is the flow on the turned foil (cases/hydrofoil/README.md, "Loads of a
 # fixed pitched foil").
-# Writes here: levels.csv (one row per level: cells, iterations, converged, in_the_mean, lift,
+# Writes here (one block of rows per model in each file): levels.csv (one row per level: cells,
+# iterations, converged, in_the_mean, lift,
 # drag, root moment M_z about (0.3685, 0, 0), their change from the unturned rigid flow, CPU and
 # wall seconds), gci.csv (scripts/history_gci.py --rigid: observed order, extrapolated value,
 # GCI_fine of lift_N, drag_N, root_moment_z_Nm), error_vs_runtime.csv (reference: the
@@ -126,20 +127,21 @@ done
 model=turbulent-$scheme-$algorithm-cgrid$suffix-pitch$angle
 "$FSI_PYTHON" "$root/scripts/history_gci.py" --rigid --model "$model" --out "$FSI_VERIFY_DIR/gci.csv" \
     --table "${folders[@]}"
-"$FSI_PYTHON" - "$FSI_VERIFY_DIR" "$np" "${folders[@]}" <<'PY'
+"$FSI_PYTHON" - "$FSI_VERIFY_DIR" "$model" "$root/scripts" "${folders[@]}" <<'PY'
 import csv, os, sys
-outDir, np = sys.argv[1:3]
-folders = sys.argv[3:]
+outDir, model, scripts = sys.argv[1:4]
+folders = sys.argv[4:]
+sys.path.insert(0, scripts)
+from model_csv import write_model_rows
 rows = [next(csv.DictReader(open(os.path.join(f, "rigid.csv")))) for f in folders]
 names = ["coarse", "medium", "fine"]
-with open(os.path.join(outDir, "levels.csv"), "w", newline="") as f:
-    w = csv.writer(f)
-    w.writerow(["preset"] + list(rows[0].keys()) + ["lift_change_N", "drag_change_N",
-                                                    "root_moment_z_change_Nm"])
-    for n, r in zip(names, rows):
-        w.writerow([n] + list(r.values()) +
-                   ["%.6g" % (float(r[q]) - float(r["rigid_" + q])) for q in
-                    ("lift_N", "drag_N", "root_moment_z_Nm")])
+changes = ["lift_change_N", "drag_change_N", "root_moment_z_change_Nm"]
+levels = [dict([("model", model), ("preset", n)] + list(r.items()) +
+               [(c, "%.6g" % (float(r[q]) - float(r["rigid_" + q])))
+                for c, q in zip(changes, ("lift_N", "drag_N", "root_moment_z_Nm"))])
+          for n, r in zip(names, rows)]
+# one block of rows per model (scheme, root wall, angle): other models' rows are kept
+write_model_rows(os.path.join(outDir, "levels.csv"), list(levels[0].keys()), model, levels)
 PY
 "$FSI_PYTHON" "$root/scripts/levels_error_csv.py" "$FSI_VERIFY_DIR/levels.csv" "$FSI_VERIFY_DIR/gci.csv" \
     "$FSI_VERIFY_DIR/error_vs_runtime.csv" "$np" "$model"
