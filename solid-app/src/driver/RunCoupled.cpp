@@ -5,6 +5,7 @@
 #include "config/YamlReader.hpp"
 #include "driver/CommFluidPeer.hpp"
 #include "driver/CoupledDriver.hpp"
+#include "fsi/comm/Collectives.hpp"
 #include "fsi/comm/Errors.hpp"
 #include "fsi/comm/LaunchOptions.hpp"
 #include "fsi/comm/MpmdWorld.hpp"
@@ -46,7 +47,8 @@ double solidRanksCpuSeconds(MPI_Comm comm)
     clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
     const double own = t.tv_sec + 1e-9 * t.tv_nsec;
     double sum = 0.0;
-    MPI_Reduce(&own, &sum, 1, MPI_DOUBLE, MPI_SUM, 0, comm);
+    comm::checkMpi(MPI_Reduce(&own, &sum, 1, MPI_DOUBLE, MPI_SUM, 0, comm),
+                   "MPI_Reduce of the solid ranks' CPU time");
     return sum;
 }
 } // namespace
