@@ -16,7 +16,8 @@
 # or a run folder. And the FSI1 runner (cases/turek-hron-fsi1/run.sh, which scripts/run also
 # calls with --check-only first): exit 0 on valid options, a bad one refused in one line, nothing
 # written either way. And rigid.sh / blcheck.sh refuse a bad --band-mean-tolerance the same way
-# (blcheck.sh through rigid.sh --check-only, which passes valid options).
+# (blcheck.sh through rigid.sh --check-only, which passes valid options). And mesh.sh refuses
+# --preset finer unless --fluid-mesh cgrid --fluid-only.
 set -uo pipefail
 work=${1:?usage: test_run_options.sh WORK}
 : "${FSI_ROOT:?set FSI_ROOT to the repository}"
@@ -154,6 +155,20 @@ studyCheck() {   # studyCheck SCRIPT ARGS...: the script refuses ARGS before wri
 studyCheck rigid.sh --mesh "$fakeMesh" --band-tolerance 1e-3 --band-mean-tolerance 1.5
 studyCheck rigid.sh --mesh "$fakeMesh" --band-mean-tolerance 1e-4x
 studyCheck blcheck.sh --preset coarse --band-tolerance 1e-3 --band-mean-tolerance -1e-4
+# mesh.sh --preset finer (the mesh studies' fourth level) exists only as a cgrid fluid mesh:
+# anything else is refused in one line naming it, before mesh.sh makes its --out
+for args in "--preset finer" "--preset finer --fluid-mesh cgrid"; do
+  rm -rf "$work/mesh-out"; rc=0
+  # shellcheck disable=SC2086
+  "$FSI_ROOT/cases/hydrofoil/mesh.sh" --out "$work/mesh-out" $args > "$work/mesh.out" 2> "$work/mesh.err" || rc=$?
+  if [ "$rc" -eq 0 ] || [ "$(wc -l < "$work/mesh.err")" -ne 1 ] || ! grep -q -- "--preset finer" "$work/mesh.err"; then
+    echo "FAIL: mesh.sh $args: exit $rc, expected non-zero and one line naming --preset finer:"; cat "$work/mesh.err"; fail=1
+  elif [ -e "$work/mesh-out" ]; then
+    echo "FAIL: mesh.sh $args: made its --out before refusing"; fail=1
+  else
+    echo "ok: mesh.sh $args -> $(cat "$work/mesh.err")"
+  fi
+done
 # rigid.sh --check-only (what blcheck.sh calls before it meshes): valid options exit 0 without a mesh
 if "$FSI_ROOT/cases/hydrofoil/rigid.sh" --check-only --flow turbulent --scheme linearUpwind \
         --band-tolerance 1e-3 --root-wall slip > "$work/study.out" 2> "$work/study.err"; then
