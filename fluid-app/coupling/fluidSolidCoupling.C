@@ -8,26 +8,19 @@
 #include "clockTime.H"
 
 #include <cmath>
-#include <ctime>
 
 // * * * * * * * * * * * * * * * * Local helpers * * * * * * * * * * * * * * //
 
 namespace
 {
 
-// The CPU seconds (user + system, every thread) this process has used so far.
-double processCpuSeconds()
+// Prints the CPU time of fluid-app since its Time was made (OpenFOAM's cpuTime, the
+// ExecutionTime of the log: user + system, every thread), summed over its ranks (collective):
+// the benchmarks (scripts/bench-fsi) split a run's CPU time by program with this line.
+void reportFluidCpu(const Foam::Time& runTime)
 {
-    timespec t{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    return t.tv_sec + 1e-9*t.tv_nsec;
-}
-
-// Prints the CPU time of the whole fluid-app, summed over its ranks (collective): the
-// benchmarks (scripts/bench-fsi) split a run's CPU time by program with this line.
-void reportFluidCpu()
-{
-    const Foam::scalar cpu = Foam::returnReduce(processCpuSeconds(), Foam::sumOp<Foam::scalar>());
+    const Foam::scalar cpu =
+        Foam::returnReduce(runTime.elapsedCpuTime(), Foam::sumOp<Foam::scalar>());
     Foam::Info<< "fsi: CPU of the fluid ranks " << cpu << " s (user + system, summed over "
         << Foam::Pstream::nProcs() << " rank(s))" << Foam::endl;
 }
@@ -460,7 +453,7 @@ int Foam::fluidSolidCoupling::runRigid(const SteadySolver& solve)
     Info<< "fsi: rigid solve: " << r.iterations << " SIMPLE iterations, residuals U "
         << r.residualU << " p " << r.residualP
         << (r.converged ? " (converged)" : " (iteration cap reached)") << endl;
-    reportFluidCpu();
+    reportFluidCpu(mesh_.time());
     if (r.inTheMean)
     {
         useMeanFields();
@@ -543,7 +536,7 @@ int Foam::fluidSolidCoupling::runCoupled
                 break;
             case CommandKind::finish:
                 Info<< "fsi: FINISH after " << wall.elapsedTime() << " s" << endl;
-                reportFluidCpu();
+                reportFluidCpu(mesh_.time());
                 return 0;
             case CommandKind::abort:
                 Perr<< "error: the solid side aborted: " << c.reason.c_str() << endl;
