@@ -37,6 +37,7 @@
 // More fields: n_target, setup_wall_s, apply_wall_s, conservative_s (one H^T apply, CPU),
 // peak_rss_mb (absolute), lin_err (the same error for a linear field: round-off for RBF kinds).
 // CPU seconds are the figures to compare on a shared machine; wall seconds show the load.
+#include "fsi/timing/Clock.hpp"
 #include "mapping/Mapping.hpp"
 #include "mapping/RbfPartitionOfUnity.hpp"
 #include "mapping/RbfThinPlate.hpp"
@@ -48,12 +49,10 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <ctime>
 #include <exception>
 #include <fstream>
 #include <sstream>
@@ -148,19 +147,6 @@ double relativeError(const Values& got, const Values& want)
     return (got - want).cwiseAbs().maxCoeff() / want.cwiseAbs().maxCoeff();
 }
 
-double cpuSeconds()
-{
-    timespec ts{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
-
-double wallSeconds()
-{
-    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-        .count();
-}
-
 // VmRSS or VmHWM of this process [MiB].
 double statusMiB(const char* key)
 {
@@ -192,13 +178,14 @@ template <class F> Timing timePerCall(F&& call)
 {
     call();
     int calls = 0;
-    const double cpu0 = cpuSeconds(), wall0 = wallSeconds();
+    const double cpu0 = fsi::timing::processCpuSeconds(), wall0 = fsi::timing::wallSeconds();
     do
     {
         call();
         ++calls;
-    } while (cpuSeconds() - cpu0 < 0.3 && calls < 200);
-    return {(cpuSeconds() - cpu0) / calls, (wallSeconds() - wall0) / calls};
+    } while (fsi::timing::processCpuSeconds() - cpu0 < 0.3 && calls < 200);
+    return {(fsi::timing::processCpuSeconds() - cpu0) / calls,
+            (fsi::timing::wallSeconds() - wall0) / calls};
 }
 
 // One case, in the calling (child) process; prints its line. wendlandRadius [m], 0: 4 spacings.
@@ -226,10 +213,11 @@ void runCase(const std::string& kind, long size, double wendlandRadius,
     params.smoothingRadius = smoothing * ht;
     const double rss0 = statusMiB("VmRSS");
     const bool peakReset = resetPeak();
-    const double cpu0 = cpuSeconds(), wall0 = wallSeconds();
+    const double cpu0 = fsi::timing::processCpuSeconds(), wall0 = fsi::timing::wallSeconds();
     const SourceSurface faces = solidFaces(nAround);
     const auto mapping = buildMapping(params, s, t, &faces);
-    const double setupCpu = cpuSeconds() - cpu0, setupWall = wallSeconds() - wall0;
+    const double setupCpu = fsi::timing::processCpuSeconds() - cpu0,
+                 setupWall = fsi::timing::wallSeconds() - wall0;
     const Timing consistent = timePerCall([&] { mapping->applyConsistent(smooth, mapped); });
     const double error = relativeError(mapped, smoothExact);
     mapping->applyConsistent(linear, mapped);

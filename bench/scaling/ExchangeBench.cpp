@@ -22,11 +22,11 @@
 #include "fsi/comm/Errors.hpp"
 #include "fsi/comm/LaunchOptions.hpp"
 #include "fsi/comm/MpmdWorld.hpp"
+#include "fsi/timing/Clock.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <ctime>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -100,13 +100,6 @@ std::vector<std::int64_t> pointRows(std::int64_t n, int size, int rank)
     if (rank + 1 < size && blockStart(n, size, rank + 1) < n)
         rows.push_back(blockStart(n, size, rank + 1));
     return rows;
-}
-
-double cpuSeconds()
-{
-    timespec t{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 double median(std::vector<double> v)
@@ -228,7 +221,7 @@ void run(const LaunchOptions& launch, const Flags& flags, std::optional<Channel>
             for (int m = 0; m < 2; ++m)          // alternating, in one invocation
             {
                 const auto start = std::chrono::steady_clock::now();
-                const double cpu0 = cpuSeconds();
+                const double cpu0 = fsi::timing::processCpuSeconds();
                 if (fluid)
                     fluidExchange(channel, modes[m], n, points, faces);
                 else
@@ -238,7 +231,7 @@ void run(const LaunchOptions& launch, const Flags& flags, std::optional<Channel>
                     wall[m].push_back(
                         std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
                             .count());
-                    cpu[m].push_back(cpuSeconds() - cpu0);
+                    cpu[m].push_back(fsi::timing::processCpuSeconds() - cpu0);
                 }
             }
         if (!fluid && channel.isRoot())

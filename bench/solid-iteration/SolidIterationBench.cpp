@@ -28,6 +28,7 @@
 #include "config/SolidConfig.hpp"
 #include "config/YamlReader.hpp"
 #include "fe/StructuralSolver.hpp"
+#include "fsi/timing/Clock.hpp"
 #include "io/VtuWriter.hpp"
 #include "material/Material.hpp"
 #include "mesh/Mesh.hpp"
@@ -39,7 +40,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -213,13 +213,6 @@ std::vector<double> syntheticForces(const std::vector<double>& xyz, int level, i
     return f;
 }
 
-double processCpuSeconds()
-{
-    timespec t{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    return t.tv_sec + 1e-9 * t.tv_nsec;
-}
-
 // Wall and CPU seconds of one phase, summed over its calls.
 struct Phase
 {
@@ -238,7 +231,7 @@ public:
         if (!stopped_)
         {
             wall_ = std::chrono::duration<double>(Clock::now() - wall0_).count();
-            cpu_ = processCpuSeconds() - cpu0_;
+            cpu_ = timing::processCpuSeconds() - cpu0_;
             phase_.wall += wall_;
             phase_.cpu += cpu_;
             ++phase_.calls;
@@ -251,7 +244,7 @@ private:
     using Clock = std::chrono::steady_clock;
     Phase& phase_;
     Clock::time_point wall0_ = Clock::now();
-    double cpu0_ = processCpuSeconds();
+    double cpu0_ = timing::processCpuSeconds();
     double wall_ = 0.0, cpu_ = 0.0;
     bool stopped_ = false;
 };

@@ -17,6 +17,7 @@
 //               `residuals` then cover every variant); --estimate  analysis only: prints MUMPS'
 //               memory and flop estimates (mumps_mb, flops) without factorizing.
 #include "fe/StructuralSolver.hpp"
+#include "fsi/timing/Clock.hpp"
 #include "linalg/CsrPattern.hpp"
 #include "linalg/SparseDirectSolver.hpp"
 #include "material/LinearElastic.hpp"
@@ -31,7 +32,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <ctime>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -212,12 +212,6 @@ mesh::Mesh boxMesh(const std::array<int, 3>& n, double h)
     return m;
 }
 
-double processCpuSeconds()
-{
-    timespec t{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    return t.tv_sec + 1e-9 * t.tv_nsec;
-}
 } // namespace
 
 int main(int argc, char** argv)
@@ -299,7 +293,7 @@ int main(int argc, char** argv)
         orderingS = st.orderingSeconds;
         factorS = st.factorizationSeconds;
         solveS = st.solveSeconds;
-        double cpu = processCpuSeconds();
+        double cpu = timing::processCpuSeconds();
         MPI_Allreduce(MPI_IN_PLACE, &cpu, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
         rusage usage{};
         getrusage(RUSAGE_SELF, &usage);

@@ -9,6 +9,7 @@
 #include "fsi/comm/Errors.hpp"
 #include "fsi/comm/LaunchOptions.hpp"
 #include "fsi/comm/MpmdWorld.hpp"
+#include "fsi/timing/Clock.hpp"
 #include "io/AtomicFile.hpp"
 #include "io/VtuWriter.hpp"
 #include "material/Material.hpp"
@@ -17,7 +18,6 @@
 
 #include <cstdio>
 #include <cstring>
-#include <ctime>
 #include <filesystem>
 #include <optional>
 
@@ -43,9 +43,7 @@ comm::LaunchOptions launchFrom(const LaunchParameters& p)
 // comm; the sum on rank 0 (collective).
 double solidRanksCpuSeconds(MPI_Comm comm)
 {
-    timespec t{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    const double own = t.tv_sec + 1e-9 * t.tv_nsec;
+    const double own = timing::processCpuSeconds();
     double sum = 0.0;
     comm::checkMpi(MPI_Reduce(&own, &sum, 1, MPI_DOUBLE, MPI_SUM, 0, comm),
                    "MPI_Reduce of the solid ranks' CPU time");

@@ -1,15 +1,15 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "linalg/SparseDirectSolver.hpp"
 
+#include "fsi/timing/Clock.hpp"
+
 #include <dlfcn.h>
 #include <dmumps_c.h>
 #include <metis.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstring>
-#include <ctime>
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
@@ -303,29 +303,16 @@ std::vector<int> metisOrdering(int n, const std::vector<int>& rows, const std::v
     return permutation;
 }
 
-double cpuSeconds()
-{
-    timespec t{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    return t.tv_sec + 1e-9 * t.tv_nsec;
-}
-
-double wallSeconds()
-{
-    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-        .count();
-}
-
 // Adds wall and CPU seconds since construction to the two counters.
 struct PhaseTimer
 {
     double& wall;
     double& cpu;
-    double wall0 = wallSeconds(), cpu0 = cpuSeconds();
+    double wall0 = timing::wallSeconds(), cpu0 = timing::processCpuSeconds();
     ~PhaseTimer()
     {
-        wall += wallSeconds() - wall0;
-        cpu += cpuSeconds() - cpu0;
+        wall += timing::wallSeconds() - wall0;
+        cpu += timing::processCpuSeconds() - cpu0;
     }
 };
 
@@ -632,12 +619,12 @@ void SparseDirectSolver::analyse()
     const bool metis = options_.ordering == static_cast<int>(Ordering::Metis);
     if (metis)
     {
-        const double t0 = wallSeconds();
+        const double t0 = timing::wallSeconds();
         const std::vector<int> allRows = gatherOnRoot(rows_, comm_);
         const std::vector<int> allCols = gatherOnRoot(cols_, comm_);
         if (rankOf(comm_) == 0)
             handle_->permutation = metisOrdering(n_, allRows, allCols);
-        stats_.orderingSeconds += wallSeconds() - t0;
+        stats_.orderingSeconds += timing::wallSeconds() - t0;
     }
     const bool lowRank = !lowRankDisabled_ && mumpsHasScotch() &&
                          (options_.lowRank == LowRank::On ||
