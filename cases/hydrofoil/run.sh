@@ -225,9 +225,10 @@ configsHave() {
     done
   done
 }
-[ -z "$fluidTol" ] || configsHave --fluid-tolerance \
-    "'final: {force_tolerance: ...}' / 'max_force_tolerance:' line under coupling.fluid_accuracy" \
-    '^    final: {force_tolerance: ' '^    max_force_tolerance: '
+if [ -n "$fluidTol" ]; then
+  why=$(tools/setFluidTolerance.sh --check solid/baseline.yaml solid/relaxed.yaml solid/viscoelastic.yaml 2>&1) ||
+      die "--fluid-tolerance: ${why#error: setFluidTolerance.sh: }"
+fi
 [ -z "$couplingTol" ] || positive "$couplingTol" 1e-3 ||
     die "--coupling-tolerance '$couplingTol' must be a length in m in (0, 1e-3), e.g. 2e-6"
 [ -z "$couplingTol" ] || configsHave --coupling-tolerance \
@@ -337,10 +338,7 @@ for m in "${runs[@]}"; do
   cfg=$run/$m.yaml
   sed "s|@MESH@|$solidMesh|" "$run/solid/$m.yaml" > "$cfg"
   # the solid-config options given (configsHave checked their lines above)
-  if [ -n "$fluidTol" ]; then
-    sed -i "s/^\(    final: {force_tolerance:\) *[^}]*}/\1 $fluidTol}/" "$cfg"
-  fi
-  setConfigNumber "$cfg" max_force_tolerance "$fluidTol"
+  [ -z "$fluidTol" ] || "$run/tools/setFluidTolerance.sh" "$cfg" "$fluidTol"
   setConfigNumber "$cfg" absolute_tolerance "$couplingTol"
   setConfigNumber "$cfg" band_factor "$bandFactor"
   setConfigNumber "$cfg" smoothing_radius "$mapSmoothing"

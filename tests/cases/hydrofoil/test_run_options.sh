@@ -3,7 +3,8 @@
 # tests/cases/hydrofoil/test_run_options.sh WORK
 #
 # run.sh refuses bad values of --band-tolerance, --band-mean-tolerance, --band-reference-force,
-# --band-window, --oscillation-window, --fluid-tolerance, --coupling-tolerance,
+# --band-window, --oscillation-window, --fluid-tolerance (also a valid value with a solid config
+# that lacks its line), --coupling-tolerance,
 # --coupling-band-factor, --warm-start-flux,
 # --mapping-smoothing, --max-fluid-iterations, --fluid-mesh, --algorithm, --root-wall and
 # --simple-acceleration (and a --fluid-mesh
@@ -22,9 +23,10 @@ set -uo pipefail
 work=${1:?usage: test_run_options.sh WORK}
 : "${FSI_ROOT:?set FSI_ROOT to the repository}"
 fail=0
-check() {   # check OPTION VALUE [MORE OPTIONS...]
+check() {   # check OPTION VALUE [MORE OPTIONS...]; $edit, when set: a command run in the copy first
   local dir=$work/run
   rm -rf "$dir"; mkdir -p "$dir"; cp -r "$FSI_ROOT/cases/hydrofoil/." "$dir/"
+  [ -z "${edit:-}" ] || (cd "$dir" && eval "$edit")
   local rc=0
   (cd "$dir" && ./run.sh --material baseline "$@" > out.txt 2> err.txt) || rc=$?
   local lines; lines=$(wc -l < "$dir/err.txt")
@@ -45,6 +47,8 @@ check --max-fluid-iterations 150
 check --max-fluid-iterations 4e2
 check --fluid-tolerance 0
 check --fluid-tolerance 2
+# a valid value, but a solid config without the line it sets (tools/setFluidTolerance.sh --check)
+edit="sed -i '/^    max_force_tolerance: /d' solid/relaxed.yaml" check --fluid-tolerance 1e-4
 check --band-mean-tolerance -1e-3
 check --band-reference-force 0
 check --band-reference-force 1N
