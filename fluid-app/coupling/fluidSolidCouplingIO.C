@@ -138,12 +138,20 @@ void Foam::fluidSolidCoupling::recordIteration
     {
         iterationLog_() << iteration << ',' << force.x() << ',' << force.y() << ','
             << force.z() << ',' << residualU << ',' << residualP << nl;
+        if (iteration % 100 == 0)
+        {
+            iterationLog_().flush();   // a long solve can be watched while it runs
+        }
     }
     else if (solveIterationLog_.valid())
     {
         solveIterationLog_() << solveStep_ << ',' << solveIteration_ << ',' << iteration << ','
             << force.x() << ',' << force.y() << ',' << force.z() << ',' << residualU << ','
             << residualP << nl;
+        if (iteration % 100 == 0)
+        {
+            solveIterationLog_().flush();
+        }
     }
 }
 

@@ -193,6 +193,16 @@ def t_force_consistency(a):
     n = re.findall(r"fsi: rigid solve: (\d+) SIMPLE iterations", log)
     check(bool(n) and [int(r[0]) for r in hist] == list(range(1, int(n[-1]) + 1)),
           "rigidIterations.csv has one row per SIMPLE iteration (%d rows, log %s)" % (len(hist), n[-1] if n else "?"))
+    # progress of a long solve: a log line every 100 SIMPLE iterations whose interface force is
+    # that iteration's row of rigidIterations.csv (to the log's 6 printed digits)
+    progress = re.findall(r"fsi: SIMPLE iteration (\d+) of at most \d+: initial residuals U \S+, p \S+,"
+                          r" interface force \((\S+) (\S+) (\S+)\) N", log)
+    want = list(range(100, (int(n[-1]) if n else 0) + 1, 100))
+    ok = [int(p[0]) for p in progress] == want and all(
+        math.dist([float(x) for x in p[1:]], hist[int(p[0]) - 1][1:4])
+        <= 1e-5 * math.hypot(*hist[int(p[0]) - 1][1:4]) for p in progress)
+    check(bool(want) and ok, "a progress line at iterations %s (log: %s) with the CSV row's force"
+          % (want, [int(p[0]) for p in progress]))
     last = hist[-1][1:4]
     relLast = math.sqrt(sum((x - y) ** 2 for x, y in zip(last, fsum))) / math.sqrt(sum(y * y for y in fsum))
     check(relLast <= 1e-10,
