@@ -441,17 +441,40 @@ int Foam::fluidSolidCoupling::run
 int Foam::fluidSolidCoupling::runRigid(const SteadySolver& solve)
 {
     Info<< "fsi: rigid mode (no coupling): steady solve to convergence" << nl << endl;
+    // time = SIMPLE iterations (deltaT 1): a run from a written time T > 0 goes on from T
+    const Time& time = mesh_.time();
+    rigidStartIteration_ = label(std::round(time.value()/time.deltaTValue()));
+    rigidWriteInterval_ = dict_.subOrEmptyDict("rigid").getOrDefault<label>("writeInterval", 0);
+    if (rigidWriteInterval_ < 0)
+    {
+        FatalIOErrorInFunction(dict_)
+            << "system/fsiDict: rigid.writeInterval " << rigidWriteInterval_ << " is invalid:"
+            << " 0 (off: fields written at the end only) or the SIMPLE iterations between"
+            << " restart points (e.g. 200)" << exit(FatalIOError);
+    }
+    if (rigidStartIteration_ > 0)
+    {
+        Info<< "fsi: rigid solve goes on from the fields of iteration " << rigidStartIteration_
+            << " (time " << time.timeName() << "); the stopping test starts anew" << endl;
+    }
     openIterationLog();
     const SolveControls rigid = controls("rigid");
     if (rigid.bandTolerance > 0)
     {
         startFieldBlocks();   // a stop in the mean then reports the mean flow
     }
-    const SolveResult r = solve(rigid);
+    SolveResult r = solve(rigid);
     closeIterationLog();
     checkDiverged(r);
-    Info<< "fsi: rigid solve: " << r.iterations << " SIMPLE iterations, residuals U "
-        << r.residualU << " p " << r.residualP
+    const label thisRun = r.iterations;
+    r.iterations += rigidStartIteration_;   // forces.csv and the log: the whole solve's count
+    Info<< "fsi: rigid solve: " << r.iterations << " SIMPLE iterations";
+    if (rigidStartIteration_ > 0)
+    {
+        Info<< " (" << thisRun << " after the restart at iteration " << rigidStartIteration_
+            << ")";
+    }
+    Info<< ", residuals U " << r.residualU << " p " << r.residualP
         << (r.converged ? " (converged)" : " (iteration cap reached)") << endl;
     reportFluidCpu(mesh_.time());
     if (r.inTheMean)

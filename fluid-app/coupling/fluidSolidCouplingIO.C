@@ -4,6 +4,10 @@
 
 #include "OFstream.H"
 
+#include <fstream>
+#include <string>
+#include <vector>
+
 Foam::fileName Foam::fluidSolidCoupling::logDir() const
 {
     return mesh_.time().globalPath()/"postProcessing"/"fsi";
@@ -105,13 +109,59 @@ void Foam::fluidSolidCoupling::logAccepted(const fsi::fluid::Command& accept) co
 void Foam::fluidSolidCoupling::openIterationLog()
 {
     recordIterations_ = true;
-    if (Pstream::master())
+    if (!Pstream::master())
     {
-        mkDir(logDir());
-        iterationLog_.reset(new OFstream(logDir()/"rigidIterations.csv"));
-        iterationLog_().precision(12);
+        return;
+    }
+    mkDir(logDir());
+    const fileName csv(logDir()/"rigidIterations.csv");
+    const bool resume = rigidStartIteration_ > 0 && isFile(csv);
+    if (resume)
+    {
+        // keep the header and the rows up to the restart point: the iterations after it are
+        // done again from the written fields
+        std::vector<std::string> kept;
+        std::ifstream in(csv);
+        for (std::string line; std::getline(in, line);)
+        {
+            if (kept.empty() || std::stol("0" + line.substr(0, line.find(','))) <= rigidStartIteration_)
+            {
+                kept.push_back(line);
+            }
+        }
+        in.close();
+        std::ofstream out(csv, std::ios::trunc);
+        for (const std::string& line : kept)
+        {
+            out << line << '\n';
+        }
+    }
+    iterationLog_.reset
+    (
+        new OFstream
+        (
+            csv, IOstream::ASCII, IOstream::currentVersion, IOstream::UNCOMPRESSED, resume
+        )
+    );
+    iterationLog_().precision(12);
+    if (!resume)
+    {
         iterationLog_() << "iteration,Fx,Fy,Fz,residualU,residualP" << nl;
     }
+}
+
+
+void Foam::fluidSolidCoupling::writeRigidRestartPoint(const label iteration)
+{
+    if (rigidWriteInterval_ <= 0 || iteration % rigidWriteInterval_ != 0)
+    {
+        return;
+    }
+    Time& runTime = const_cast<Time&>(mesh_.time());
+    runTime.writeNow();
+    Info<< "fsi: rigid solve: fields of iteration " << rigidStartIteration_ + iteration
+        << " written (time " << runTime.timeName() << "): a stopped solve goes on from here"
+        << endl;
 }
 
 
@@ -136,8 +186,8 @@ void Foam::fluidSolidCoupling::recordIteration
     }
     if (iterationLog_.valid())
     {
-        iterationLog_() << iteration << ',' << force.x() << ',' << force.y() << ','
-            << force.z() << ',' << residualU << ',' << residualP << nl;
+        iterationLog_() << rigidStartIteration_ + iteration << ',' << force.x() << ','
+            << force.y() << ',' << force.z() << ',' << residualU << ',' << residualP << nl;
         if (iteration % 100 == 0)
         {
             iterationLog_().flush();   // a long solve can be watched while it runs

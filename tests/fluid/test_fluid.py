@@ -469,6 +469,57 @@ def t_rigid_band_mean(a):
                                                    lastF, math.dist(lastF, mean) / scale))
 
 
+def t_rigid_restart(a):
+    """fsiDict rigid.writeInterval: a long rigid solve writes its fields every N iterations and a
+    run started from the latest of them (startFrom latestTime) goes on. Stopped at iteration 100
+    (the cap; rows 101-110 of a run killed later appended to rigidIterations.csv by hand) and
+    restarted, the solve must end exactly as the uninterrupted one with the same writes (this
+    case stops on the residuals, which carry no history): the same SIMPLE count, forces.csv's
+    totals to 1e-12, rigidIterations.csv one row per iteration 1..N without the dropped rows, and
+    the log naming the restart."""
+    fsi = "rigid { maxIterations %d; residualDrop 0; forceTolerance 0; writeInterval 50; }"
+    whole = prepare(a, "rigid-restart-whole", extra_fsi=fsi % 4000)
+    d = prepare(a, "rigid-restart", extra_fsi=fsi % 100)
+    for case in (whole, d):
+        cd = os.path.join(case, "system", "controlDict")
+        txt = re.sub(r"startFrom\s+\w+;", "startFrom latestTime;", open(cd).read())
+        open(cd, "w").write(re.sub(r"purgeWrite\s+\d+;", "purgeWrite 1;", txt))
+    rc0, log0 = run([a.fluid_app, "-rigid", "-case", whole], os.path.join(whole, "log.fluid-app"))
+    rc1, log1 = run([a.fluid_app, "-rigid", "-case", d], os.path.join(d, "log.part1"))
+    written = [int(x) for x in re.findall(r"fsi: rigid solve: fields of iteration (\d+) written", log1)]
+    check(rc0 == 0 and rc1 == 0 and written == [50, 100] and os.path.isdir(os.path.join(d, "100")),
+          "first part: exit 0, fields written at iterations %s (want [50, 100]), time 100 on disk" % written)
+    post = os.path.join(d, "postProcessing", "fsi")
+    with open(os.path.join(post, "rigidIterations.csv"), "a") as f:
+        for i in range(101, 111):   # rows of iterations redone after the restart
+            f.write("%d,9,9,9,9,9\n" % i)
+    fd = os.path.join(d, "system", "fsiDict")
+    txt = open(fd).read()
+    open(fd, "w").write(re.sub(r"maxIterations 100;", "maxIterations 4000;", txt))
+    rc2, log2 = run([a.fluid_app, "-rigid", "-case", d], os.path.join(d, "log.part2"))
+    n0 = re.findall(r"fsi: rigid solve: (\d+) SIMPLE iterations,", log0)
+    n2 = re.findall(r"fsi: rigid solve: (\d+) SIMPLE iterations \((\d+) after the restart at iteration 100\)", log2)
+    check(rc2 == 0 and "goes on from the fields of iteration 100" in log2 and n0 and n2
+          and int(n2[0][0]) == int(n0[0]) and int(n2[0][1]) == int(n0[0]) - 100,
+          "restart: exit 0, log names iteration 100, %s SIMPLE iterations in all (uninterrupted %s)"
+          % (n2[0] if n2 else "?", n0[0] if n0 else "?"))
+    rows = {}
+    for name, case in (("whole", whole), ("restarted", d)):
+        with open(os.path.join(case, "postProcessing", "fsi", "forces.csv")) as f:
+            rows[name] = next(csv.DictReader(f), {})
+    keys = ("Fx", "Fy", "Fz")
+    fw = [float(rows["whole"].get(k, "nan")) for k in keys]
+    fr = [float(rows["restarted"].get(k, "nan")) for k in keys]
+    check(math.dist(fw, fr) <= 1e-12 * math.hypot(*fw)
+          and rows["whole"].get("simpleIterations") == rows["restarted"].get("simpleIterations"),
+          "forces.csv: restarted %s vs uninterrupted %s, %s vs %s iterations"
+          % (fr, fw, rows["restarted"].get("simpleIterations"), rows["whole"].get("simpleIterations")))
+    its = [int(r[0]) for r in read_csv(os.path.join(post, "rigidIterations.csv"))]
+    check(n0 and its == list(range(1, int(n0[0]) + 1)),
+          "rigidIterations.csv: one row per iteration 1..%s (%d rows, the hand-made 101-110 dropped)"
+          % (n0[0] if n0 else "?", len(its)))
+
+
 def t_bad_case(a):
     """Bad OpenFOAM-case input: a missing interface patch, a missing fsiDict key, a restart
     without a checkpointed level. Each stops non-zero, naming system/fsiDict (or the file) and the fix."""
@@ -772,7 +823,7 @@ def t_simple_acceleration(a):
 
 TESTS = {"cfd1-coarse": t_cfd1_coarse, "cfd1-fine": t_cfd1_fine, "force-consistency": t_force_consistency,
          "motion-rotation": t_motion_rotation, "motion-bending": t_motion_bending,
-         "quality-guard": t_quality_guard, "wall-at-rest": t_wall_at_rest, "warm-start": t_warm_start, "warm-start-turbulent": t_warm_start_turbulent, "band-mean": t_band_mean, "rigid-band-mean": t_rigid_band_mean, "bad-case": t_bad_case,
+         "quality-guard": t_quality_guard, "wall-at-rest": t_wall_at_rest, "warm-start": t_warm_start, "warm-start-turbulent": t_warm_start_turbulent, "band-mean": t_band_mean, "rigid-band-mean": t_rigid_band_mean, "rigid-restart": t_rigid_restart, "bad-case": t_bad_case,
          "simple-acceleration": t_simple_acceleration, "parallel-equivalence": t_parallel_equivalence,
          "mpmd": t_mpmd, "port": t_port, "peer-abort": t_peer_abort,
          "failed-start": t_failed_start, "solid-death": t_solid_death}
