@@ -6,7 +6,7 @@
 #   cases/hydrofoil/rigid.sh --mesh DIR/fluid --out RUNDIR [--flow laminar|transition|turbulent]
 #       [--scheme upwind|linearUpwind] [--np 2] [--tolerance 1e-5] [--max-iterations 3000]
 #       [--init-from RUN] [--algorithm simple] [--band-tolerance B] [--band-mean-tolerance M]
-#       [--root-wall wall|slip] [--check-only]
+#       [--root-wall wall|slip] [--write-interval 200] [--resume] [--check-only]
 #
 #   --tolerance T        stop when the estimated force error is <= T |F|, held 100 iterations
 #                        (fsiDict rigid/estimateForceError; the 2-D section mode's criterion)
@@ -32,6 +32,17 @@
 #                        flow whose mean creeps by more than T per block long after the
 #                        discretization error is settled (the second-order fine cgrid level:
 #                        1e-5..6e-5 |F| per 100 iterations, README "A steady second-order flow")
+#   --write-interval N   write the fields every N SIMPLE iterations (fsiDict rigid/writeInterval;
+#                        default 200, 0: at the end only): restart points for --resume. On the
+#                        finer cgrid level (2.7 M cells, ~4 s per iteration on 2 cores) a solve
+#                        takes longer than a 3-hour session
+#   --resume             go on with the solve in RUNDIR/case from its latest written iteration
+#                        T (a run stopped from outside, e.g. at a session's end), with the same
+#                        options: the case is not rebuilt (--init-from and --root-wall are then
+#                        ignored), the cap stays --max-iterations in all (the rerun may do
+#                        N - T), the stopping test starts anew. rigid.csv's iterations count
+#                        from 0, its cpu_s and wall_s are the last run's only. Without a
+#                        written iteration in RUNDIR/case: exit 2
 #   --check-only         validate the options' values and exit: 0, or 2 with the one-line error;
 #                        writes nothing and needs neither --mesh, --out nor fluid-app (blcheck.sh
 #                        calls it before it meshes)
@@ -46,6 +57,7 @@
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 mesh="" out="" flow=laminar scheme=upwind np=2 tol=1e-5 maxIt=3000 initFrom="" algorithm="" band=0 bandMean=0 rootWall=wall checkOnly=0
+writeInterval=200 resume=0
 die() { echo "error: rigid.sh: $*" >&2; exit 2; }
 # fraction VALUE: VALUE is 0 or a number in (0, 1)
 fraction() { awk -v v="$1" 'BEGIN{exit !(v ~ /^[0-9.eE+-]+$/ && v + 0 >= 0 && v + 0 < 1)}'; }
@@ -63,6 +75,8 @@ while [ $# -gt 0 ]; do
         --band-tolerance) band="$2"; shift 2 ;;
         --band-mean-tolerance) bandMean="$2"; shift 2 ;;
         --root-wall) rootWall="$2"; shift 2 ;;
+        --write-interval) writeInterval="$2"; shift 2 ;;
+        --resume) resume=1; shift ;;
         --check-only) checkOnly=1; shift ;;
         -h|--help) sed -n '3,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) die "unknown option '$1' (see --help)" ;;
@@ -72,7 +86,8 @@ done
     die "--mesh '$mesh' has no constant/polyMesh; run mesh.sh first"
 [ "$checkOnly" = 1 ] || [ -n "$out" ] || die "--out RUNDIR is required (a run folder outside git)"
 [[ "$np" =~ ^[1-9][0-9]*$ ]] || die "--np '$np' must be a positive integer"
-[[ "$maxIt" =~ ^[1-9][0-9]*$ ]] || die "--max-iterations '$maxIt' must be a positive integer"
+{ [[ "$maxIt" =~ ^[1-9][0-9]*$ ]] && [ "$maxIt" -ge 100 ]; } ||
+    die "--max-iterations '$maxIt' must be an integer >= 100 (the stopping test holds 100 iterations)"
 awk -v t="$tol" 'BEGIN{exit !(t + 0 > 0 && t + 0 < 1)}' || die "--tolerance '$tol' must be in (0, 1)"
 fraction "$band" ||
     die "--band-tolerance '$band' must be 0 (off) or in (0, 1)"
@@ -82,25 +97,49 @@ fraction "$bandMean" ||
     die "--band-mean-tolerance '$bandMean' must be 0 (off: the --tolerance) or in (0, 1)"
 "$here/tools/setFlow.sh" --check-only --flow "$flow" --scheme "$scheme" ${algorithm:+--algorithm "$algorithm"}
 case "$rootWall" in wall|slip) ;; *) die "--root-wall '$rootWall' must be wall (the paper's no-slip tunnel) or slip" ;; esac
-[ -z "$initFrom" ] || { [ -f "$initFrom/rigid.csv" ] && [ -d "$initFrom/case" ]; } ||
+[[ "$writeInterval" =~ ^(0|[1-9][0-9]*)$ ]] ||
+    die "--write-interval '$writeInterval' must be 0 (fields at the end only) or a positive integer (e.g. 200)"
+[ "$resume" = 1 ] || [ -z "$initFrom" ] || { [ -f "$initFrom/rigid.csv" ] && [ -d "$initFrom/case" ]; } ||
     die "--init-from '$initFrom' is not a finished rigid.sh run (no rigid.csv / case)"
 [ "$checkOnly" = 0 ] || exit 0
+case="$out/case"
+# latestWritten: the largest written iteration > 0 of the case (processor0's with np > 1), or 0
+latestWritten() {
+    local d=$case; [ "$np" -gt 1 ] && d=$case/processor0
+    { ls "$d" 2> /dev/null || true; } | awk '/^[0-9]+$/ && $1 > 0 {if ($1 + 0 > m) m = $1 + 0} END {print m + 0}'
+}
+startIt=0
+if [ "$resume" = 1 ]; then
+    startIt=$(latestWritten)
+    [ "$startIt" -gt 0 ] ||
+        die "--resume: $case has no written iteration to go on from (start without --resume)"
+    [ "$((maxIt - startIt))" -ge 100 ] ||
+        die "--resume: $case is at iteration $startIt: fewer than 100 iterations left below --max-iterations $maxIt (raise it)"
+    [ "$((maxIt - startIt))" -ge 200 ] || awk -v b="$band" 'BEGIN{exit !(b + 0 == 0)}' ||
+        die "--resume: $((maxIt - startIt)) iterations left below --max-iterations $maxIt; --band-tolerance needs >= 200 (raise --max-iterations)"
+fi
 command -v fluid-app > /dev/null || die "fluid-app not on PATH (build first; scripts/run sets PATH)"
 export WM_PROJECT_DIR="${WM_PROJECT_DIR:-/usr/share/openfoam}"
 export OMPI_MCA_btl_tcp_if_include=lo OMPI_MCA_oob_tcp_if_include=lo
 log() { echo "[rigid.sh $(date +%H:%M:%S)] $*"; }
 
-mkdir -p "$out"
-case="$out/case"
-caseArgs=()
-[ -z "$initFrom" ] || caseArgs=(--init-from "$initFrom/case")
-[ -z "$algorithm" ] || caseArgs+=(--algorithm "$algorithm")
-caseArgs+=(--root-wall "$rootWall")
-"$here/tools/fluidCase.sh" "$case" "$mesh" "$np" --flow "$flow" --scheme "$scheme" ${caseArgs[@]+"${caseArgs[@]}"}
-[ "$rootWall" = wall ] || log "root wall z = 0: slip (tools/rootWall.sh)"
-[ -z "$initFrom" ] || log "initial fields mapped from $initFrom"
+if [ "$resume" = 1 ]; then
+    for f in log.fluid-app time.txt; do [ ! -f "$case/$f" ] || mv "$case/$f" "$case/$f.before-$startIt"; done
+    rm -f "$out/rigid.csv"
+    log "resuming $case from iteration $startIt"
+else
+    mkdir -p "$out"
+    caseArgs=()
+    [ -z "$initFrom" ] || caseArgs=(--init-from "$initFrom/case")
+    [ -z "$algorithm" ] || caseArgs+=(--algorithm "$algorithm")
+    caseArgs+=(--root-wall "$rootWall")
+    "$here/tools/fluidCase.sh" "$case" "$mesh" "$np" --flow "$flow" --scheme "$scheme" ${caseArgs[@]+"${caseArgs[@]}"}
+    [ "$rootWall" = wall ] || log "root wall z = 0: slip (tools/rootWall.sh)"
+    [ -z "$initFrom" ] || log "initial fields mapped from $initFrom"
+fi
 fd() { foamDictionary "$case/$1" -entry "$2" -set "$3" > /dev/null; }
-fd system/fsiDict rigid/maxIterations "$maxIt"
+fd system/fsiDict rigid/maxIterations "$((maxIt - startIt))"
+fd system/fsiDict rigid/writeInterval "$writeInterval"
 fd system/fsiDict rigid/forceTolerance "$tol"
 fd system/fsiDict rigid/residualRequired false
 fd system/fsiDict rigid/estimateForceError true
@@ -111,6 +150,8 @@ fd system/fsiDict rigid/bandWindow 100
 fd system/fsiDict rigid/bandMeanTolerance "$bandMean"
 fd system/controlDict endTime "$maxIt"
 fd system/controlDict writeInterval "$maxIt"
+fd system/controlDict startFrom latestTime
+fd system/controlDict purgeWrite 1
 # evaluated after the solve by simpleFoam -postProcess on the written fields (ASCII, so that the
 # per-face values can be read): forces, y+ and the face centres of the foil
 fd system/controlDict writeFormat ascii

@@ -58,7 +58,10 @@
 #                 flow has no steady state with the no-slip root wall (README, "A steady
 #                 second-order flow: the slip root wall"); run folders and model get "-slip"
 #   H3D_RUNS      run folders (default $FSI_VERIFY_DIR/runs, not tracked)
-#   H3D_REUSE=1   keep a level whose RUN/rigid/rigid.csv exists instead of redoing it
+#   H3D_REUSE=1   keep a level whose RUN/rigid/rigid.csv exists instead of redoing it, and go
+#                 on with a level stopped during its rigid solve (a session's end: the solve
+#                 writes a restart point every 200 iterations; blcheck.sh --resume) instead of
+#                 starting it again. The same settings as the stopped run
 #   H3D_SEQUENCE  1 (default): every level starts from the next coarser level's flow
 #                 (blcheck.sh --init-from; grid sequencing, fewer iterations, the same stopping
 #                 test); 0: every level from rest
@@ -96,16 +99,21 @@ for level in $levels; do
     if [ "$reuse" = 1 ] && [ -f "$r/rigid/rigid.csv" ] && [ -f "$r/blcheck.txt" ]; then
         echo "hydrofoil-3d-rigid: reusing $r"
     else
-        echo "hydrofoil-3d-rigid: $level ($(date +%H:%M:%S), load $(cut -d' ' -f1 /proc/loadavg))"
-        rm -rf "$r"
-        init=()
-        [ -z "$previous" ] || [ "${H3D_SEQUENCE:-1}" != 1 ] || init=(--init-from "$previous")
-        [ "$algorithm" = simplec ] || init+=(--algorithm "$algorithm")
+        extra=()
+        [ "$algorithm" = simplec ] || extra=(--algorithm "$algorithm")
+        if [ "$reuse" = 1 ] && [ -d "$r/rigid/case" ] && [ -f "$r/log.motion" ]; then
+            what=resumed extra+=(--resume)   # the log goes on
+        else
+            what=started
+            rm -rf "$r"; : > "$r.log"
+            [ -z "$previous" ] || [ "${H3D_SEQUENCE:-1}" != 1 ] || extra+=(--init-from "$previous")
+        fi
+        echo "hydrofoil-3d-rigid: $level $what ($(date +%H:%M:%S), load $(cut -d' ' -f1 /proc/loadavg))"
         # blcheck exits 1 when y+ > 1 or the motion check fails: recorded in its line, not fatal
         "$root/cases/hydrofoil/blcheck.sh" --out "$r" --preset "$level" --flow "$flow" \
             --scheme "$scheme" --np "$np" --band-tolerance "$band" \
-            --band-mean-tolerance "$bandMean" --root-wall "$rootWall" ${init[@]+"${init[@]}"} \
-            > "$r.log" 2>&1 || true
+            --band-mean-tolerance "$bandMean" --root-wall "$rootWall" ${extra[@]+"${extra[@]}"} \
+            >> "$r.log" 2>&1 || true
         grep '^blcheck:' "$r.log" > "$r/blcheck.txt" ||
             { tail -5 "$r.log" >&2; echo "error: hydrofoil-3d-rigid: $level failed (see $r.log)" >&2; exit 1; }
     fi

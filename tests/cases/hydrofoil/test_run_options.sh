@@ -17,7 +17,9 @@
 # or a run folder. And the FSI1 runner (cases/turek-hron-fsi1/run.sh, which scripts/run also
 # calls with --check-only first): exit 0 on valid options, a bad one refused in one line, nothing
 # written either way. And rigid.sh / blcheck.sh refuse a bad --band-mean-tolerance the same way
-# (blcheck.sh through rigid.sh --check-only, which passes valid options). And mesh.sh refuses
+# (blcheck.sh through rigid.sh --check-only, which passes valid options), and rigid.sh a bad
+# --write-interval or --max-iterations and a --resume without a restart point (blcheck.sh: without
+# a stopped run). And mesh.sh refuses
 # --preset finer unless --fluid-mesh cgrid --fluid-only.
 set -uo pipefail
 work=${1:?usage: test_run_options.sh WORK}
@@ -162,6 +164,12 @@ studyCheck() { refusedBefore 2 --band-mean-tolerance "$@"; }
 studyCheck rigid.sh --mesh "$fakeMesh" --band-tolerance 1e-3 --band-mean-tolerance 1.5
 studyCheck rigid.sh --mesh "$fakeMesh" --band-mean-tolerance 1e-4x
 studyCheck blcheck.sh --preset coarse --band-tolerance 1e-3 --band-mean-tolerance -1e-4
+# restart points and --resume (a rigid solve longer than a session): bad values, and a --resume
+# with nothing to go on from, refused in one line before anything is made
+refusedBefore 2 --write-interval rigid.sh --mesh "$fakeMesh" --write-interval -5
+refusedBefore 2 --max-iterations rigid.sh --mesh "$fakeMesh" --max-iterations 50
+refusedBefore 2 --resume rigid.sh --mesh "$fakeMesh" --resume
+refusedBefore 2 --resume blcheck.sh --preset coarse --resume
 # mesh.sh --preset finer (the mesh studies' fourth level) exists only as a cgrid fluid mesh:
 # anything else is refused in one line naming it, before mesh.sh makes its --out
 refusedBefore nz "--preset finer" mesh.sh --preset finer
