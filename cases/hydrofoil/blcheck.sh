@@ -22,7 +22,8 @@
 # --root-wall slip: the tunnel's root wall a slip wall (rigid.sh; default wall, no-slip).
 # --resume: RUNDIR holds a run stopped during its rigid solve (e.g. at a session's end): keep its
 # mesh and motion check and go on with the solve from its latest restart point (rigid.sh
-# --resume; the solve writes one every 200 iterations). Same options as the stopped run.
+# --resume; the solve writes one every 200 iterations), or only print the line when the solve
+# had finished (rigid/rigid.csv). Same options as the stopped run.
 # Exit 1 when the motion check fails or the first-cell y+ exceeds 1 anywhere on the foil (the
 # mesh's promise); the line is printed either way. Cost: coarse about 9 min on 2 cores (mesh
 # 20 s, motion 30 s, rigid solve 8 min), medium ~25 min, fine more than an hour; finer (cgrid3d.py's
@@ -80,7 +81,9 @@ else
 fi
 nonorth=$(awk '/non-orthogonality Max/ {print $4; exit}' "$out/motion/log.checkMesh" 2>/dev/null || true)
 log "rigid solve ($flow, $scheme)"
-if [ "$resume" = 1 ]; then
+if [ "$resume" = 1 ] && [ -f "$out/rigid/rigid.csv" ]; then
+    log "the rigid solve had finished (rigid/rigid.csv): its line only"
+elif [ "$resume" = 1 ]; then
     "$here/rigid.sh" --mesh "$out/mesh/fluid" --out "$out/rigid" "${rigidOptions[@]}" --resume \
         >> "$out/log.rigid" 2>&1 || die "rigid.sh --resume failed (see $out/log.rigid)"
 else
