@@ -48,7 +48,7 @@ while [ $# -gt 0 ]; do
         --band-mean-tolerance) bandMean="$2"; shift 2 ;;
         --root-wall) rootWall="$2"; shift 2 ;;
         --resume) resume=1; shift ;;
-        -h|--help) sed -n '3,25p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        -h|--help) sed -n '3,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) die "unknown option '$1' (see --help)" ;;
     esac
 done
