@@ -4,7 +4,9 @@
 
 #include "OFstream.H"
 
+#include <cstdlib>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -106,6 +108,41 @@ void Foam::fluidSolidCoupling::logAccepted(const fsi::fluid::Command& accept) co
 }
 
 
+namespace
+{
+
+// The iteration of one rigidIterations.csv row, or -1 unless the row is whole: an integer and
+// the five numbers of the header "iteration,Fx,Fy,Fz,residualU,residualP".
+Foam::label rigidLogRowIteration(const std::string& row)
+{
+    std::istringstream fields(row);
+    std::string field;
+    std::vector<std::string> parts;
+    while (std::getline(fields, field, ','))
+    {
+        parts.push_back(field);
+    }
+    if (parts.size() != 6)
+    {
+        return -1;
+    }
+    for (const std::string& number : parts)
+    {
+        char* end = nullptr;
+        std::strtod(number.c_str(), &end);
+        if (number.empty() || *end != '\0')
+        {
+            return -1;
+        }
+    }
+    char* end = nullptr;
+    const long iteration = std::strtol(parts[0].c_str(), &end, 10);
+    return *end == '\0' ? Foam::label(iteration) : -1;
+}
+
+} // namespace
+
+
 void Foam::fluidSolidCoupling::openIterationLog()
 {
     recordIterations_ = true;
@@ -118,18 +155,34 @@ void Foam::fluidSolidCoupling::openIterationLog()
     const bool resume = rigidStartIteration_ > 0 && isFile(csv);
     if (resume)
     {
-        // keep the header and the rows up to the restart point: the iterations after it are
-        // done again from the written fields
+        // keep the header and the whole rows up to the restart point: the iterations after it
+        // are done again from the written fields; a row torn by the kill is dropped
         std::vector<std::string> kept;
+        label dropped = 0;
         std::ifstream in(csv);
         for (std::string line; std::getline(in, line);)
         {
-            if (kept.empty() || std::stol("0" + line.substr(0, line.find(','))) <= rigidStartIteration_)
+            if (kept.empty())
+            {
+                kept.push_back(line);   // the header
+                continue;
+            }
+            const label row = rigidLogRowIteration(line);
+            if (row > 0 && row <= rigidStartIteration_)
             {
                 kept.push_back(line);
             }
+            else if (row < 0)
+            {
+                ++dropped;
+            }
         }
         in.close();
+        if (dropped > 0)
+        {
+            Info<< "fsi: " << csv << ": dropped " << dropped
+                << " incomplete row(s) left by the stopped run" << endl;
+        }
         std::ofstream out(csv, std::ios::trunc);
         for (const std::string& line : kept)
         {

@@ -472,11 +472,11 @@ def t_rigid_band_mean(a):
 def t_rigid_restart(a):
     """fsiDict rigid.writeInterval: a long rigid solve writes its fields every N iterations and a
     run started from the latest of them (startFrom latestTime) goes on. Stopped at iteration 100
-    (the cap; rows 101-110 of a run killed later appended to rigidIterations.csv by hand) and
-    restarted, the solve must end exactly as the uninterrupted one with the same writes (this
-    case stops on the residuals, which carry no history): the same SIMPLE count, forces.csv's
-    totals to 1e-12, rigidIterations.csv one row per iteration 1..N without the dropped rows, and
-    the log naming the restart."""
+    (the cap; rows 101-110 of a run killed later, and a torn row 111, appended to
+    rigidIterations.csv by hand) and restarted, the solve must end exactly as the uninterrupted
+    one with the same writes (this case stops on the residuals, which carry no history): the
+    same SIMPLE count, forces.csv's totals to 1e-12, rigidIterations.csv one row per iteration
+    1..N without the dropped rows, and the log naming the restart and the torn row."""
     fsi = "rigid { maxIterations %d; residualDrop 0; forceTolerance 0; writeInterval 50; }"
     whole = prepare(a, "rigid-restart-whole", extra_fsi=fsi % 4000)
     d = prepare(a, "rigid-restart", extra_fsi=fsi % 100)
@@ -493,15 +493,17 @@ def t_rigid_restart(a):
     with open(os.path.join(post, "rigidIterations.csv"), "a") as f:
         for i in range(101, 111):   # rows of iterations redone after the restart
             f.write("%d,9,9,9,9,9\n" % i)
+        f.write("111,0.21")   # a row torn by the kill
     fd = os.path.join(d, "system", "fsiDict")
     txt = open(fd).read()
     open(fd, "w").write(re.sub(r"maxIterations 100;", "maxIterations 4000;", txt))
     rc2, log2 = run([a.fluid_app, "-rigid", "-case", d], os.path.join(d, "log.part2"))
     n0 = re.findall(r"fsi: rigid solve: (\d+) SIMPLE iterations,", log0)
     n2 = re.findall(r"fsi: rigid solve: (\d+) SIMPLE iterations \((\d+) after the restart at iteration 100\)", log2)
-    check(rc2 == 0 and "goes on from the fields of iteration 100" in log2 and n0 and n2
+    check(rc2 == 0 and "goes on from the fields of iteration 100" in log2
+          and "dropped 1 incomplete row(s)" in log2 and n0 and n2
           and int(n2[0][0]) == int(n0[0]) and int(n2[0][1]) == int(n0[0]) - 100,
-          "restart: exit 0, log names iteration 100, %s SIMPLE iterations in all (uninterrupted %s)"
+          "restart: exit 0, log names iteration 100 and the torn row, %s SIMPLE iterations in all (uninterrupted %s)"
           % (n2[0] if n2 else "?", n0[0] if n0 else "?"))
     rows = {}
     for name, case in (("whole", whole), ("restarted", d)):
