@@ -6,7 +6,8 @@
 #   cases/hydrofoil/rigid.sh --mesh DIR/fluid --out RUNDIR [--flow laminar|transition|turbulent]
 #       [--scheme upwind|linearUpwind] [--np 2] [--tolerance 1e-5] [--max-iterations 3000]
 #       [--init-from RUN] [--algorithm simple] [--band-tolerance B] [--band-mean-tolerance M]
-#       [--root-wall wall|slip] [--write-interval 200] [--resume] [--check-only]
+#       [--root-wall wall|slip] [--write-interval 200] [--resume] [--shape-from CASE]
+#       [--check-only]
 #
 #   --tolerance T        stop when the estimated force error is <= T |F|, held 100 iterations
 #                        (fsiDict rigid/estimateForceError; the 2-D section mode's criterion)
@@ -43,6 +44,14 @@
 #                        N - T), the stopping test starts anew. rigid.csv's iterations count
 #                        from 0, its cpu_s and wall_s are the last run's only. Without a
 #                        written iteration in RUNDIR/case: exit 2
+#   --shape-from CASE    solve the foil in the shape of a coupled run: CASE is a coupled fluid
+#                        case of run.sh (RUN/fluid-baseline, on the same --mesh, --np and
+#                        --root-wall); its written moved mesh (processor*/0/polyMesh/points,
+#                        or 0/polyMesh/points with --np 1) and flow (the fields this case has)
+#                        replace the case's initial ones. The converged coupled state's loads
+#                        come back if its flow is steady; for one accepted in the mean it gives
+#                        the frozen shape's steady or long-window mean loads. Not with
+#                        --init-from or --resume (a resumed shape run keeps its mesh)
 #   --check-only         validate the options' values and exit: 0, or 2 with the one-line error;
 #                        writes nothing and needs neither --mesh, --out nor fluid-app (blcheck.sh
 #                        calls it before it meshes)
@@ -57,7 +66,7 @@
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 mesh="" out="" flow=laminar scheme=upwind np=2 tol=1e-5 maxIt=3000 initFrom="" algorithm="" band=0 bandMean=0 rootWall=wall checkOnly=0
-writeInterval=200 resume=0
+writeInterval=200 resume=0 shapeFrom=""
 die() { echo "error: rigid.sh: $*" >&2; exit 2; }
 # fraction VALUE: VALUE is 0 or a number in (0, 1)
 fraction() { awk -v v="$1" 'BEGIN{exit !(v ~ /^[0-9.eE+-]+$/ && v + 0 >= 0 && v + 0 < 1)}'; }
@@ -77,6 +86,7 @@ while [ $# -gt 0 ]; do
         --root-wall) rootWall="$2"; shift 2 ;;
         --write-interval) writeInterval="$2"; shift 2 ;;
         --resume) resume=1; shift ;;
+        --shape-from) shapeFrom="$2"; shift 2 ;;
         --check-only) checkOnly=1; shift ;;
         -h|--help) sed -n '3,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) die "unknown option '$1' (see --help)" ;;
@@ -101,6 +111,16 @@ case "$rootWall" in wall|slip) ;; *) die "--root-wall '$rootWall' must be wall (
     die "--write-interval '$writeInterval' must be 0 (fields at the end only) or a positive integer (e.g. 200)"
 [ "$resume" = 1 ] || [ -z "$initFrom" ] || { [ -f "$initFrom/rigid.csv" ] && [ -d "$initFrom/case" ]; } ||
     die "--init-from '$initFrom' is not a finished rigid.sh run (no rigid.csv / case)"
+if [ -n "$shapeFrom" ]; then
+    [ "$resume" = 0 ] && [ -z "$initFrom" ] ||
+        die "--shape-from starts from the coupled case's flow: not with --init-from or --resume"
+    [ -f "$shapeFrom/processor0/0/polyMesh/points" ] || [ -f "$shapeFrom/0/polyMesh/points" ] ||
+        die "--shape-from '$shapeFrom' has no moved mesh (0/polyMesh/points or processor0/0/polyMesh/points); give a coupled run's fluid case, e.g. RUN/fluid-baseline"
+    shapeRanks=0
+    [ ! -d "$shapeFrom/processor0" ] || shapeRanks=$(ls -d "$shapeFrom"/processor[0-9]* | wc -l)
+    [ "$shapeRanks" -eq "$((np > 1 ? np : 0))" ] ||
+        die "--shape-from '$shapeFrom' is decomposed for $shapeRanks rank(s) (0: serial); give --np ${shapeRanks/#0/1}"
+fi
 [ "$checkOnly" = 0 ] || exit 0
 case="$out/case"
 # latestWritten: the largest written iteration > 0 of the case (processor0's with np > 1), or 0
@@ -123,6 +143,26 @@ export WM_PROJECT_DIR="${WM_PROJECT_DIR:-/usr/share/openfoam}"
 export OMPI_MCA_btl_tcp_if_include=lo OMPI_MCA_oob_tcp_if_include=lo
 log() { echo "[rigid.sh $(date +%H:%M:%S)] $*"; }
 
+# takeShape SOURCE: the moved mesh and flow of the coupled case SOURCE become this case's initial
+# state, rank by rank (the same mesh and decomposition, checked on the point addressing)
+takeShape() {
+    local src=$1 dirs=(.) d f n=0
+    [ "$np" -gt 1 ] && { dirs=(); for ((r = 0; r < np; r++)); do dirs+=("processor$r"); done; }
+    for d in "${dirs[@]}"; do
+        [ "$np" -eq 1 ] || cmp -s "$src/$d/constant/polyMesh/pointProcAddressing" \
+            "$case/$d/constant/polyMesh/pointProcAddressing" ||
+            die "--shape-from '$src': $d is not this mesh's decomposition (another --mesh or --root-wall?)"
+        mkdir -p "$case/$d/0/polyMesh"
+        cp "$src/$d/0/polyMesh/points" "$case/$d/0/polyMesh/points"
+        for f in "$case/$d/0"/*; do
+            [ -f "$f" ] && [ -f "$src/$d/0/${f##*/}" ] && [ "${f##*/}" != pointDisplacement ] || continue
+            cp "$src/$d/0/${f##*/}" "$f"
+            n=$((n + 1))
+        done
+    done
+    log "initial mesh and flow: the shape of $src ($n field files)"
+}
+
 if [ "$resume" = 1 ]; then
     for f in log.fluid-app time.txt; do [ ! -f "$case/$f" ] || mv "$case/$f" "$case/$f.before-$startIt"; done
     rm -f "$out/rigid.csv"
@@ -136,6 +176,7 @@ else
     "$here/tools/fluidCase.sh" "$case" "$mesh" "$np" --flow "$flow" --scheme "$scheme" ${caseArgs[@]+"${caseArgs[@]}"}
     [ "$rootWall" = wall ] || log "root wall z = 0: slip (tools/rootWall.sh)"
     [ -z "$initFrom" ] || log "initial fields mapped from $initFrom"
+    [ -z "$shapeFrom" ] || takeShape "$(cd "$shapeFrom" && pwd)"
 fi
 fd() { foamDictionary "$case/$1" -entry "$2" -set "$3" > /dev/null; }
 fd system/fsiDict rigid/maxIterations "$((maxIt - startIt))"
@@ -168,12 +209,23 @@ t0=$(date +%s.%N)
     mpirun --oversubscribe -np "$np" fluid-app -rigid "${par[@]}" > log.fluid-app 2>&1 ) ||
     { tail -20 "$case/log.fluid-app"; die "fluid-app failed (see $case/log.fluid-app)"; }
 t1=$(date +%s.%N)
-if [ "$np" -gt 1 ]; then
+postProcess() {
+    ( cd "$case" && "$@" > log.postProcess 2>&1 ) ||
+        { tail -20 "$case/log.postProcess"; die "simpleFoam -postProcess failed (see $case/log.postProcess)"; }
+}
+reconstruct() {
     ( cd "$case" && reconstructPar -latestTime > log.reconstructPar 2>&1 ) ||
         die "reconstructPar failed (see $case/log.reconstructPar)"
+}
+if [ "$np" -gt 1 ] && [ -f "$case/processor0/0/polyMesh/points" ]; then
+    # a shape run's moved points are at time 0 of the processor folders only (reconstructPar
+    # leaves them): its loads and y+ are evaluated on the ranks, then reconstructed
+    postProcess mpirun --oversubscribe -np "$np" simpleFoam -postProcess -latestTime -parallel
+    reconstruct
+else
+    [ "$np" -eq 1 ] || reconstruct
+    postProcess simpleFoam -postProcess -latestTime
 fi
-( cd "$case" && simpleFoam -postProcess -latestTime > log.postProcess 2>&1 ) ||
-    { tail -20 "$case/log.postProcess"; die "simpleFoam -postProcess failed (see $case/log.postProcess)"; }
 cells=$(awk '/^ *cells:/{print $2; exit}' "$mesh/log.checkMesh" 2>/dev/null || echo nan)
 
 /usr/bin/python3 - "$case" "$cells" "$flow" "$scheme" "$t0" "$t1" "$out/rigid.csv" <<'EOP'

@@ -170,6 +170,16 @@ refusedBefore 2 --write-interval rigid.sh --mesh "$fakeMesh" --write-interval -5
 refusedBefore 2 --max-iterations rigid.sh --mesh "$fakeMesh" --max-iterations 50
 refusedBefore 2 --resume rigid.sh --mesh "$fakeMesh" --resume
 refusedBefore 2 --resume blcheck.sh --preset coarse --resume
+# --shape-from (a rigid solve in a coupled run's shape): a case without a moved mesh, one
+# decomposed for other ranks, or with --init-from, refused in one line before anything is made
+fakeShape=$work/fake-shape fakeRigid=$work/fake-rigid
+rm -rf "$fakeShape" "$fakeRigid"
+mkdir -p "$fakeShape/processor0/0/polyMesh" "$fakeShape/processor1" "$fakeRigid/case"
+: > "$fakeRigid/rigid.csv"
+refusedBefore 2 "--shape-from '$fakeRigid' has no moved mesh" rigid.sh --mesh "$fakeMesh" --shape-from "$fakeRigid"
+: > "$fakeShape/processor0/0/polyMesh/points"
+refusedBefore 2 "give --np 2" rigid.sh --mesh "$fakeMesh" --np 1 --shape-from "$fakeShape"
+refusedBefore 2 "not with --init-from" rigid.sh --mesh "$fakeMesh" --shape-from "$fakeShape" --init-from "$fakeRigid"
 # mesh.sh --preset finer (the mesh studies' fourth level) exists only as a cgrid fluid mesh:
 # anything else is refused in one line naming it, before mesh.sh makes its --out
 refusedBefore nz "--preset finer" mesh.sh --preset finer
