@@ -146,7 +146,7 @@ log() { echo "[rigid.sh $(date +%H:%M:%S)] $*"; }
 # takeShape SOURCE: the moved mesh and flow of the coupled case SOURCE become this case's initial
 # state, rank by rank (the same mesh and decomposition, checked on the point addressing)
 takeShape() {
-    local src=$1 dirs=(.) d f n=0
+    local src=$1 dirs=(.) d f r n=0
     [ "$np" -gt 1 ] && { dirs=(); for ((r = 0; r < np; r++)); do dirs+=("processor$r"); done; }
     for d in "${dirs[@]}"; do
         [ "$np" -eq 1 ] || cmp -s "$src/$d/constant/polyMesh/pointProcAddressing" \

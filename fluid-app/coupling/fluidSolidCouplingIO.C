@@ -126,18 +126,21 @@ Foam::label rigidLogRowIteration(const std::string& row)
     {
         return -1;
     }
-    for (const std::string& number : parts)
+    char* end = nullptr;
+    const long iteration = std::strtol(parts[0].c_str(), &end, 10);
+    if (parts[0].empty() || *end != '\0')
     {
-        char* end = nullptr;
-        std::strtod(number.c_str(), &end);
-        if (number.empty() || *end != '\0')
+        return -1;
+    }
+    for (std::size_t i = 1; i < parts.size(); ++i)
+    {
+        std::strtod(parts[i].c_str(), &end);
+        if (parts[i].empty() || *end != '\0')
         {
             return -1;
         }
     }
-    char* end = nullptr;
-    const long iteration = std::strtol(parts[0].c_str(), &end, 10);
-    return *end == '\0' ? Foam::label(iteration) : -1;
+    return Foam::label(iteration);
 }
 
 } // namespace
