@@ -120,6 +120,10 @@ if [ -n "$shapeFrom" ]; then
     [ ! -d "$shapeFrom/processor0" ] || shapeRanks=$(ls -d "$shapeFrom"/processor[0-9]* | wc -l)
     [ "$shapeRanks" -eq "$((np > 1 ? np : 0))" ] ||
         die "--shape-from '$shapeFrom' is decomposed for $shapeRanks rank(s) (0: serial); give --np ${shapeRanks/#0/1}"
+    for d in "$shapeFrom"/processor[0-9]*; do
+        [ ! -d "$d" ] || [ -f "$d/0/polyMesh/points" ] ||
+            die "--shape-from '$shapeFrom': ${d##*/} has no moved mesh 0/polyMesh/points (a coupled run stopped before its fields were written?); give a coupled run's finished fluid case"
+    done
 fi
 [ "$checkOnly" = 0 ] || exit 0
 case="$out/case"
