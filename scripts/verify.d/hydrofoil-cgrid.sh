@@ -28,6 +28,15 @@
 # the force swinging by +-0.3-0.7 % (lift; a two-iteration cycle), so at the fluid
 # accuracy 5e-5 and the case's band 2e-3 every one of its solves ran to the 400-iteration cap and
 # the level was never accepted (2026-12-06; cases/hydrofoil/README.md).
+# HYDROFOIL_SHAPE_CHECK=1: afterwards every level's accepted state is solved on to convergence
+# at its shape (cases/hydrofoil/tools/shapeCheck.sh: rigid.sh --shape-from with the rigid
+# study's stopping test: force error 1e-5 held 100 iterations, or in the mean, band 1e-4 and
+# block means within 1e-4 with linearUpwind, band 1e-3 with upwind; at most
+# HYDROFOIL_SHAPE_MAX_ITERATIONS, default 3000), and this folder's shape.csv gets one row per
+# level: the coupled and the converged lift and drag and their change, the fluid iteration
+# error the accepted levels carry (second order: coarse about 700 iterations, medium 900, fine
+# about an hour on 2 cores). With HYDROFOIL_REUSE=1 a level's finished shape run is kept, so
+# the check can follow a finished study.
 set -euo pipefail
 : "${FSI_VERIFY_DIR:?run through scripts/verify hydrofoil-cgrid}"
 root=${FSI_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}
@@ -43,6 +52,21 @@ if [ "$scheme" = linearUpwind ]; then
     export HYDROFOIL_BAND_TOLERANCE=${HYDROFOIL_BAND_TOLERANCE:-5e-3}
     export HYDROFOIL_BAND_MEAN=${HYDROFOIL_BAND_MEAN:-1e-4}
 fi
+# the shape check's rigid.sh options, checked before anything runs
+shapeCheck=${HYDROFOIL_SHAPE_CHECK:-0}
+case "$shapeCheck" in 0|1) ;; *) echo "error: hydrofoil-cgrid: HYDROFOIL_SHAPE_CHECK='$shapeCheck' must be 0 or 1" >&2; exit 2 ;; esac
+shapeOpts=(--flow turbulent --scheme "$scheme" --root-wall "$rootWall" --np 2
+           --max-iterations "${HYDROFOIL_SHAPE_MAX_ITERATIONS:-3000}")
+[ "$algorithm" = simplec ] || shapeOpts+=(--algorithm "$algorithm")
+if [ "$scheme" = linearUpwind ]; then
+    shapeOpts+=(--band-tolerance 1e-4 --band-mean-tolerance 1e-4)
+else
+    shapeOpts+=(--band-tolerance 1e-3)
+fi
+[[ "${HYDROFOIL_SHAPE_MAX_ITERATIONS:-3000}" =~ ^[1-9][0-9]*$ ]] &&
+    [ "${HYDROFOIL_SHAPE_MAX_ITERATIONS:-3000}" -ge 200 ] ||
+    { echo "error: hydrofoil-cgrid: HYDROFOIL_SHAPE_MAX_ITERATIONS='${HYDROFOIL_SHAPE_MAX_ITERATIONS:-}' must be an integer >= 200 (the band rule's two blocks; e.g. 3000)" >&2; exit 2; }
+[ "$shapeCheck" = 0 ] || "$root/cases/hydrofoil/rigid.sh" --check-only "${shapeOpts[@]}" || exit 2
 export HYDROFOIL_FLUID_MESH=cgrid HYDROFOIL_FLOW=turbulent HYDROFOIL_SCHEME=$scheme
 export HYDROFOIL_ALGORITHM=$algorithm HYDROFOIL_ROOT_WALL=$rootWall
 export HYDROFOIL_INIT_FROM=$rigidRuns/turbulent-$scheme-$algorithm$suffix-LEVEL/rigid/case
@@ -62,3 +86,33 @@ if [ $# = 3 ]; then
   "$FSI_PYTHON" "$root/scripts/history_gci.py" --steady --model "$model" \
       --out "$root/verification/hydrofoil/gci.csv" "$runs/run-$1" "$runs/run-$2" "$runs/run-$3" > /dev/null
 fi
+
+# the accepted shapes solved on to convergence (HYDROFOIL_SHAPE_CHECK=1)
+[ "$shapeCheck" = 1 ] || exit 0
+export PATH=${FSI_BUILD_DIR:-$root/build}/bin:$PATH   # rigid.sh runs fluid-app
+shapeRuns=()
+for level in "$@"; do
+    r=$runs/run-$level
+    if [ "${HYDROFOIL_REUSE:-0}" = 1 ] && [ -f "$r/shape-baseline/shape.csv" ]; then
+        echo "hydrofoil-cgrid: $level: reusing the shape run in $r/shape-baseline"
+    else
+        echo "hydrofoil-cgrid: $level: the accepted shape solved on to convergence ($(date +%H:%M:%S))"
+        rm -rf "$r/shape-baseline"
+        "$root/cases/hydrofoil/tools/shapeCheck.sh" --run "$r" -- "${shapeOpts[@]}" > "$r/log.shape" 2>&1 ||
+            { tail -5 "$r/log.shape" >&2; echo "error: hydrofoil-cgrid: $level shape check failed (see $r/log.shape)" >&2; exit 1; }
+    fi
+    tail -n 1 "$r/log.shape" 2> /dev/null || true
+    shapeRuns+=("$level=$r/shape-baseline/shape.csv")
+done
+"$FSI_PYTHON" - "$study/shape.csv" "$model" "$root/scripts" "${shapeRuns[@]}" <<'PY'
+import csv, sys
+out, model, scripts = sys.argv[1:4]
+sys.path.insert(0, scripts)
+from model_csv import write_model_rows
+rows = []
+for arg in sys.argv[4:]:
+    level, path = arg.split("=", 1)
+    rows += [dict(r, model=model, level=level) for r in csv.DictReader(open(path))]
+columns = ["model", "level"] + [c for c in rows[0] if c not in ("model", "level")]
+write_model_rows(out, columns, model, rows)
+PY

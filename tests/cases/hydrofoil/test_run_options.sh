@@ -171,7 +171,7 @@ refusedBefore 2 --max-iterations rigid.sh --mesh "$fakeMesh" --max-iterations 50
 refusedBefore 2 --resume rigid.sh --mesh "$fakeMesh" --resume
 refusedBefore 2 --resume blcheck.sh --preset coarse --resume
 # --shape-from (a rigid solve in a coupled run's shape): a case without a moved mesh, one
-# decomposed for other ranks, or with --init-from, refused in one line before anything is made
+# decomposed for other ranks, one with a rank folder lacking the moved mesh, or with --init-from, refused in one line before anything is made
 fakeShape=$work/fake-shape fakeRigid=$work/fake-rigid
 rm -rf "$fakeShape" "$fakeRigid"
 mkdir -p "$fakeShape/processor0/0/polyMesh" "$fakeShape/processor1" "$fakeRigid/case"
@@ -179,7 +179,11 @@ mkdir -p "$fakeShape/processor0/0/polyMesh" "$fakeShape/processor1" "$fakeRigid/
 refusedBefore 2 "--shape-from '$fakeRigid' has no moved mesh" rigid.sh --mesh "$fakeMesh" --shape-from "$fakeRigid"
 : > "$fakeShape/processor0/0/polyMesh/points"
 refusedBefore 2 "give --np 2" rigid.sh --mesh "$fakeMesh" --np 1 --shape-from "$fakeShape"
+refusedBefore 2 "processor1 has no moved mesh" rigid.sh --mesh "$fakeMesh" --np 2 --shape-from "$fakeShape"
 refusedBefore 2 "not with --init-from" rigid.sh --mesh "$fakeMesh" --shape-from "$fakeShape" --init-from "$fakeRigid"
+# tools/shapeCheck.sh (rigid.sh --shape-from on a run.sh run folder): no run, or not a finished one
+refusedBefore 2 "give --run" tools/shapeCheck.sh
+refusedBefore 2 "has no results/baseline/history.csv" tools/shapeCheck.sh --run "$fakeRigid"
 # mesh.sh --preset finer (the mesh studies' fourth level) exists only as a cgrid fluid mesh:
 # anything else is refused in one line naming it, before mesh.sh makes its --out
 refusedBefore nz "--preset finer" mesh.sh --preset finer
