@@ -23,7 +23,8 @@
 # Writes DIR (rigid.sh's case and rigid.csv) and DIR/shape.csv, one row: time_s (the state's
 # time), coupled_lift_N, shape_lift_N, lift_change_pct, coupled_drag_N, shape_drag_N,
 # drag_change_pct (shape against coupled), then rigid.sh's iterations, converged, in_the_mean,
-# band, root_moment_z_Nm, cpu_s, wall_s. Exit 2 on bad options (one line), 1 when the solve fails.
+# band, root_moment_z_Nm, cpu_s, wall_s. Exit 2 on bad options (one line; rigid.sh's own too),
+# non-zero when the solve fails.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 die() { echo "error: shapeCheck.sh: $*" >&2; exit 2; }
@@ -46,7 +47,7 @@ history=$run/results/$material/history.csv fluidCase=$run/fluid-$material
 out=${out:-$run/shape-$material}
 case " $* " in *" --shape-from "*|*" --mesh "*|*" --out "*) die "--shape-from, --mesh and --out are this tool's to set" ;; esac
 
-"$here/rigid.sh" --mesh "$run/mesh/fluid" --out "$out" --shape-from "$fluidCase" "$@" || exit 1
+"$here/rigid.sh" --mesh "$run/mesh/fluid" --out "$out" --shape-from "$fluidCase" "$@" || exit $?
 [ -f "$out/rigid.csv" ] || { echo "error: shapeCheck.sh: rigid.sh wrote no $out/rigid.csv" >&2; exit 1; }
 
 /usr/bin/python3 - "$history" "$out/rigid.csv" "$out/shape.csv" <<'EOP'

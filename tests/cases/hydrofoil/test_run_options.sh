@@ -171,7 +171,8 @@ refusedBefore 2 --max-iterations rigid.sh --mesh "$fakeMesh" --max-iterations 50
 refusedBefore 2 --resume rigid.sh --mesh "$fakeMesh" --resume
 refusedBefore 2 --resume blcheck.sh --preset coarse --resume
 # --shape-from (a rigid solve in a coupled run's shape): a case without a moved mesh, one
-# decomposed for other ranks, one with a rank folder lacking the moved mesh, or with --init-from, refused in one line before anything is made
+# decomposed for other ranks, one with a rank folder lacking the moved mesh, or with --init-from,
+# refused in one line before anything is made
 fakeShape=$work/fake-shape fakeRigid=$work/fake-rigid
 rm -rf "$fakeShape" "$fakeRigid"
 mkdir -p "$fakeShape/processor0/0/polyMesh" "$fakeShape/processor1" "$fakeRigid/case"
