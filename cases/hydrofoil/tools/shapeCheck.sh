@@ -16,9 +16,9 @@
 #                      level written)
 #   --out DIR          rigid.sh's run folder (default RUN/shape-MATERIAL)
 #   the rest           passed to rigid.sh: the run's flow model (--flow, --scheme, --algorithm,
-#                      --root-wall, the same --np as the run's fluid) and the shape solve's
-#                      stopping test (--tolerance, --band-tolerance, --band-mean-tolerance,
-#                      --max-iterations)
+#                      --root-wall) and the shape solve's stopping test (--tolerance,
+#                      --band-tolerance, --band-mean-tolerance, --max-iterations). --np is the
+#                      run's fluid rank count (its processor folders), unless given
 #
 # Writes DIR (rigid.sh's case and rigid.csv) and DIR/shape.csv, one row: time_s (the state's
 # time), coupled_lift_N, shape_lift_N, lift_change_pct, coupled_drag_N, shape_drag_N,
@@ -47,7 +47,9 @@ history=$run/results/$material/history.csv fluidCase=$run/fluid-$material
 out=${out:-$run/shape-$material}
 case " $* " in *" --shape-from "*|*" --mesh "*|*" --out "*) die "--shape-from, --mesh and --out are this tool's to set" ;; esac
 
-"$here/rigid.sh" --mesh "$run/mesh/fluid" --out "$out" --shape-from "$fluidCase" "$@" || exit $?
+ranks=$(find "$fluidCase" -maxdepth 1 -type d -name 'processor[0-9]*' | wc -l)
+"$here/rigid.sh" --mesh "$run/mesh/fluid" --out "$out" --shape-from "$fluidCase" \
+    --np "$((ranks > 0 ? ranks : 1))" "$@" || exit $?
 [ -f "$out/rigid.csv" ] || { echo "error: shapeCheck.sh: rigid.sh wrote no $out/rigid.csv" >&2; exit 1; }
 
 /usr/bin/python3 - "$history" "$out/rigid.csv" "$out/shape.csv" <<'EOP'
