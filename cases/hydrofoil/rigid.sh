@@ -45,10 +45,13 @@
 #                        from 0, its cpu_s and wall_s are the last run's only. Without a
 #                        written iteration in RUNDIR/case: exit 2
 #   --shape-from CASE    solve the foil in the shape of a coupled run: CASE is a coupled fluid
-#                        case of run.sh (RUN/fluid-baseline, on the same --mesh, --np and
-#                        --root-wall); its written moved mesh (processor*/0/polyMesh/points,
-#                        or 0/polyMesh/points with --np 1) and flow (the fields this case has)
-#                        replace the case's initial ones. The converged coupled state's loads
+#                        case of run.sh (RUN/fluid-baseline, on the same --mesh and --np); its
+#                        written moved mesh (processor*/0/polyMesh/points, or 0/polyMesh/points
+#                        with --np 1) and flow (the fields this case has) replace the case's
+#                        initial ones. The flow model (--flow, --scheme, --algorithm,
+#                        --root-wall) is CASE's own, from its fluidModel (tools/fluidCase.sh):
+#                        an option that contradicts it is refused; a CASE made before
+#                        2026-12-07 has none, then --flow and --scheme must be given. The converged coupled state's loads
 #                        come back if its flow is steady; for one accepted in the mean it gives
 #                        the frozen shape's steady or long-window mean loads. Not with
 #                        --init-from or --resume (a resumed shape run keeps its mesh)
@@ -67,6 +70,7 @@ set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 mesh="" out="" flow=laminar scheme=upwind np=2 tol=1e-5 maxIt=3000 initFrom="" algorithm="" band=0 bandMean=0 rootWall=wall checkOnly=0
 writeInterval=200 resume=0 shapeFrom=""
+given=" "   # the flow-model options given (variable names), for --shape-from
 die() { echo "error: rigid.sh: $*" >&2; exit 2; }
 # fraction VALUE: VALUE is 0 or a number in (0, 1)
 fraction() { awk -v v="$1" 'BEGIN{exit !(v ~ /^[0-9.eE+-]+$/ && v + 0 >= 0 && v + 0 < 1)}'; }
@@ -74,16 +78,16 @@ while [ $# -gt 0 ]; do
     case "$1" in
         --mesh) mesh="$2"; shift 2 ;;
         --out) out="$2"; shift 2 ;;
-        --flow) flow="$2"; shift 2 ;;
-        --scheme) scheme="$2"; shift 2 ;;
+        --flow) flow="$2"; given+="flow "; shift 2 ;;
+        --scheme) scheme="$2"; given+="scheme "; shift 2 ;;
         --np) np="$2"; shift 2 ;;
         --tolerance) tol="$2"; shift 2 ;;
         --max-iterations) maxIt="$2"; shift 2 ;;
         --init-from) initFrom="$2"; shift 2 ;;
-        --algorithm) algorithm="$2"; shift 2 ;;
+        --algorithm) algorithm="$2"; given+="algorithm "; shift 2 ;;
         --band-tolerance) band="$2"; shift 2 ;;
         --band-mean-tolerance) bandMean="$2"; shift 2 ;;
-        --root-wall) rootWall="$2"; shift 2 ;;
+        --root-wall) rootWall="$2"; given+="rootWall "; shift 2 ;;
         --write-interval) writeInterval="$2"; shift 2 ;;
         --resume) resume=1; shift ;;
         --shape-from) shapeFrom="$2"; shift 2 ;;
@@ -105,8 +109,6 @@ fraction "$band" ||
     die "--band-tolerance needs --max-iterations >= 200 (two blocks of 100)"
 fraction "$bandMean" ||
     die "--band-mean-tolerance '$bandMean' must be 0 (off: the --tolerance) or in (0, 1)"
-"$here/tools/setFlow.sh" --check-only --flow "$flow" --scheme "$scheme" ${algorithm:+--algorithm "$algorithm"}
-case "$rootWall" in wall|slip) ;; *) die "--root-wall '$rootWall' must be wall (the paper's no-slip tunnel) or slip" ;; esac
 [[ "$writeInterval" =~ ^(0|[1-9][0-9]*)$ ]] ||
     die "--write-interval '$writeInterval' must be 0 (fields at the end only) or a positive integer (e.g. 200)"
 [ "$resume" = 1 ] || [ -z "$initFrom" ] || { [ -f "$initFrom/rigid.csv" ] && [ -d "$initFrom/case" ]; } ||
@@ -124,7 +126,25 @@ if [ -n "$shapeFrom" ]; then
         [ ! -d "$d" ] || [ -f "$d/0/polyMesh/points" ] ||
             die "--shape-from '$shapeFrom': ${d##*/} has no moved mesh 0/polyMesh/points (a coupled run stopped before its fields were written?); give a coupled run's finished fluid case"
     done
+    # the flow model is the coupled case's own (its fluidModel, tools/fluidCase.sh): taken where
+    # no option gives it, an option that contradicts it refused
+    if [ -f "$shapeFrom/fluidModel" ]; then
+        while read -r key value; do
+            case "$key" in flow|scheme|algorithm) var=$key ;; root_wall) var=rootWall ;; *) continue ;; esac
+            if [[ "$given" == *" $var "* ]]; then
+                [ "${!var}" = "$value" ] ||
+                    die "--shape-from '$shapeFrom' was solved with --${key/_/-} $value (its fluidModel): leave --${key/_/-} out or give $value"
+            else
+                printf -v "$var" '%s' "$value"
+            fi
+        done < "$shapeFrom/fluidModel"
+    else
+        [[ "$given" == *" flow "* && "$given" == *" scheme "* ]] ||
+            die "--shape-from '$shapeFrom' has no fluidModel (made before 2026-12-07): give the coupled run's --flow and --scheme (and --algorithm, --root-wall as it ran)"
+    fi
 fi
+"$here/tools/setFlow.sh" --check-only --flow "$flow" --scheme "$scheme" ${algorithm:+--algorithm "$algorithm"}
+case "$rootWall" in wall|slip) ;; *) die "--root-wall '$rootWall' must be wall (the paper's no-slip tunnel) or slip" ;; esac
 [ "$checkOnly" = 0 ] || exit 0
 case="$out/case"
 # latestWritten: the largest written iteration > 0 of the case (processor0's with np > 1), or 0

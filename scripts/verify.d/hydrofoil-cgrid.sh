@@ -55,6 +55,8 @@ fi
 # the shape check's rigid.sh options, checked before anything runs
 shapeCheck=${HYDROFOIL_SHAPE_CHECK:-0}
 case "$shapeCheck" in 0|1) ;; *) echo "error: hydrofoil-cgrid: HYDROFOIL_SHAPE_CHECK='$shapeCheck' must be 0 or 1" >&2; exit 2 ;; esac
+# the study's model given too: runs made before 2026-12-07 do not record theirs (rigid.sh
+# --shape-from checks it against the fluid case's fluidModel where there is one)
 shapeOpts=(--flow turbulent --scheme "$scheme" --root-wall "$rootWall"
            --max-iterations "${HYDROFOIL_SHAPE_MAX_ITERATIONS:-3000}")
 [ "$algorithm" = simplec ] || shapeOpts+=(--algorithm "$algorithm")

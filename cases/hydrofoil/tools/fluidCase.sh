@@ -17,7 +17,9 @@
 # the SIMPLE iterations Anderson-mixed over the last DEPTH, default 5; none: plain; not given:
 # the case's fluid/system/fvSolution; fluid-app/README.md). Used by run.sh for the
 # coupled runs and by scripts/bench-fsi for its rigid baseline, so that both solve with the
-# same settings; options other than --init-from go to tools/setFlow.sh.
+# same settings; options other than --init-from go to tools/setFlow.sh. Records the model in
+# effect in DEST/fluidModel (`flow F`, `scheme S`, `algorithm simple|simplec`, `root_wall W`):
+# rigid.sh --shape-from solves a coupled case's shape on with that model.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 case_dir="$(cd "$here/.." && pwd)"
@@ -55,7 +57,7 @@ rm -rf "$dest"/processor*
 cp "$case_dir/fluid/system/fsiDict" "$case_dir/fluid/system/fvSchemes" \
    "$case_dir/fluid/system/fvSolution" "$dest/system/"
 for f in "$case_dir/fluid/0.orig"/*; do [ -e "$dest/0/$(basename "$f")" ] || cp "$f" "$dest/0/"; done
-"$here/setFlow.sh" "$dest" ${flowArgs[@]+"${flowArgs[@]}"} > /dev/null
+model=$("$here/setFlow.sh" "$dest" ${flowArgs[@]+"${flowArgs[@]}"})
 # mapFields -consistent needs the source's patches: the root patch is made before the mapping
 # when the source has one (a slip-root-wall run), after it otherwise
 [ "$rootWall" = wall ] || [ "$sourceRoot" = 0 ] || "$here/rootWall.sh" "$dest" > /dev/null
@@ -67,6 +69,11 @@ elif [ -n "$acceleration" ]; then
   depth=5; [ "$acceleration" = anderson ] || depth=${acceleration#anderson:}
   foamDictionary "$dest/system/fvSolution" -entry SIMPLE/acceleration -set "{ type anderson; depth $depth; }" >/dev/null
 fi
+# DEST/fluidModel: the model in effect, `key value` per line (flow, scheme, algorithm, root_wall),
+# for the tools that solve on from this case's flow (rigid.sh --shape-from takes it from here)
+{ echo "# the flow model of this case (tools/fluidCase.sh)"
+  for kv in $model; do echo "${kv%%=*} ${kv#*=}"; done
+  echo "root_wall $rootWall"; } > "$dest/fluidModel"
 if [ "$np" -gt 1 ]; then
   foamDictionary "$dest/system/decomposeParDict" -entry numberOfSubdomains -set "$np" >/dev/null
   foamDictionary "$dest/system/decomposeParDict" -entry method -set hierarchical >/dev/null

@@ -31,7 +31,8 @@
 #
 # Copies fluid/flow/<flow> to CASE/constant/turbulenceProperties and sets divSchemes of
 # CASE/system/fvSchemes. The fields of every model are in fluid/0.orig (k, omega, nut,
-# ReThetat, gammaInt are read only by the RAS models). Prints "flow=F scheme=S".
+# ReThetat, gammaInt are read only by the RAS models). Prints "flow=F scheme=S algorithm=A" (A the
+# algorithm in effect: the one given, else the case's).
 # `setFlow.sh --check-only [options]` only validates the options (exit 2 with a one-line error):
 # the scripts that pass them on call it before they write anything.
 set -euo pipefail
@@ -92,4 +93,4 @@ sol SIMPLE/consistent "$consistent"
 sol relaxationFactors/fields/p "$relaxP"
 sol relaxationFactors/equations/U "$relaxU"
 sol 'relaxationFactors/equations/"(k|omega|ReThetat|gammaInt)"' "$relaxT"
-echo "flow=$flow scheme=$scheme${algorithm:+ algorithm=$algorithm}"
+echo "flow=$flow scheme=$scheme algorithm=$effective"

@@ -7,7 +7,7 @@
 # coupled levels' fluid iteration error").
 #
 #   cases/hydrofoil/tools/shapeCheck.sh --run RUN [--material baseline] [--out DIR] [--]
-#       [rigid.sh options: --flow, --scheme, --root-wall, --np, --band-tolerance, ...]
+#       [rigid.sh options: --band-tolerance, --max-iterations, --np, ...]
 #
 #   --run RUN          a finished run.sh run folder: RUN/mesh/fluid, RUN/fluid-MATERIAL (the
 #                      coupled fluid case with its written moved mesh) and
@@ -15,10 +15,12 @@
 #   --material M       the run's --material (default baseline: the t = 0 state; visco: the last
 #                      level written)
 #   --out DIR          rigid.sh's run folder (default RUN/shape-MATERIAL)
-#   the rest           passed to rigid.sh: the run's flow model (--flow, --scheme, --algorithm,
-#                      --root-wall) and the shape solve's stopping test (--tolerance,
-#                      --band-tolerance, --band-mean-tolerance, --max-iterations). --np is the
-#                      run's fluid rank count (its processor folders), unless given
+#   the rest           passed to rigid.sh: the shape solve's stopping test (--tolerance,
+#                      --band-tolerance, --band-mean-tolerance, --max-iterations). The flow model
+#                      is the run's own (rigid.sh --shape-from reads its fluid case's fluidModel;
+#                      a run made before 2026-12-07 has none: then give its --flow, --scheme and,
+#                      as it ran, --algorithm and --root-wall). --np is the run's fluid rank
+#                      count (its processor folders), unless given
 #
 # Writes DIR (rigid.sh's case and rigid.csv) and DIR/shape.csv, one row: time_s (the state's
 # time), coupled_lift_N, shape_lift_N, lift_change_pct, coupled_drag_N, shape_drag_N,

@@ -16,7 +16,8 @@
 #    shared-point synchronisation the second step stopped with "face 0 area does not match
 #    neighbour" (the coupled run on this mesh: at level 0's third coupling iteration).
 #  - tools/fluidCase.sh --root-wall slip moves exactly the root wall's faces (one per plane
-#    cell) from `walls` to a patch `root` with slip / zero-gradient fields, and decomposes; a
+#    cell) from `walls` to a patch `root` with slip / zero-gradient fields, decomposes and
+#    records the model in effect in fluidModel; a
 #    no-slip case refuses to start from such a case (--init-from), before writing anything.
 # usage: test_cgrid_motion.sh WORKDIR   (environment: FSI_BUILD_DIR)
 set -euo pipefail
@@ -128,6 +129,12 @@ for field, kind in (("U", "slip"), ("p", "zeroGradient"), ("k", "zeroGradient"),
 print("slip root wall: %d faces from walls to root, fields set, decomposed" % plane)
 EOP
 [ -d "$slip/processor1" ] || { echo "FAIL: fluidCase.sh --root-wall slip did not decompose"; exit 1; }
+# ... and records the model in effect (the scheme and algorithm left out: the case's upwind and
+# SIMPLEC), which rigid.sh --shape-from takes
+model=$(grep -v '^#' "$slip/fluidModel" | tr '\n' ' ')
+[ "$model" = "flow turbulent scheme upwind algorithm simplec root_wall slip " ] ||
+    { echo "FAIL: fluidCase.sh recorded fluidModel '$model'"; exit 1; }
+echo "fluidModel: $model"
 # A no-slip case cannot start from a slip-root-wall run's flow (mapFields -consistent needs the
 # same patches): refused in one line, before anything is written.
 refused=$work-refused

@@ -19,7 +19,8 @@
 # written either way. And rigid.sh / blcheck.sh refuse a bad --band-mean-tolerance the same way
 # (blcheck.sh through rigid.sh --check-only, which passes valid options), and rigid.sh a bad
 # --write-interval or --max-iterations and a --resume without a restart point (blcheck.sh: without
-# a stopped run). And mesh.sh refuses
+# a stopped run), and rigid.sh --shape-from an option that contradicts the coupled case's recorded
+# flow model (fluidModel), or, without one, a missing --flow / --scheme. And mesh.sh refuses
 # --preset finer unless --fluid-mesh cgrid --fluid-only.
 set -uo pipefail
 work=${1:?usage: test_run_options.sh WORK}
@@ -182,6 +183,27 @@ refusedBefore 2 "--shape-from '$fakeRigid' has no moved mesh" rigid.sh --mesh "$
 refusedBefore 2 "give --np 2" rigid.sh --mesh "$fakeMesh" --np 1 --shape-from "$fakeShape"
 refusedBefore 2 "processor1 has no moved mesh" rigid.sh --mesh "$fakeMesh" --np 2 --shape-from "$fakeShape"
 refusedBefore 2 "not with --init-from" rigid.sh --mesh "$fakeMesh" --shape-from "$fakeShape" --init-from "$fakeRigid"
+# the shape solve's flow model is the coupled case's (its fluidModel): a contradicting option is
+# refused, the recorded model passes rigid.sh --check-only without model options; a case without
+# fluidModel (made before 2026-12-07) needs --flow and --scheme
+mkdir -p "$fakeShape/processor1/0/polyMesh"; : > "$fakeShape/processor1/0/polyMesh/points"
+refusedBefore 2 "has no fluidModel" rigid.sh --mesh "$fakeMesh" --np 2 --shape-from "$fakeShape"
+printf '# the flow model of this case (tools/fluidCase.sh)\nflow turbulent\nscheme linearUpwind\nalgorithm simplec\nroot_wall slip\n' \
+    > "$fakeShape/fluidModel"
+refusedBefore 2 "was solved with --scheme linearUpwind" rigid.sh --mesh "$fakeMesh" --np 2 --shape-from "$fakeShape" --scheme upwind
+refusedBefore 2 "was solved with --root-wall slip" rigid.sh --mesh "$fakeMesh" --np 2 --shape-from "$fakeShape" --root-wall wall
+for given in "" "--flow turbulent --scheme linearUpwind --root-wall slip --algorithm simplec"; do
+    # shellcheck disable=SC2086  # $given: words on purpose
+    if "$FSI_ROOT/cases/hydrofoil/rigid.sh" --check-only --np 2 --shape-from "$fakeShape" $given \
+            > "$work/study.out" 2> "$work/study.err"; then
+        echo "ok: rigid.sh --check-only --shape-from with the recorded model${given:+ (given: $given)}: exit 0"
+    else
+        echo "FAIL: rigid.sh --check-only --shape-from with the recorded model ($given):"; cat "$work/study.err"; fail=1
+    fi
+done
+# ... and it is what rigid.sh validates (a recorded value it does not know is refused)
+sed -i 's/^scheme .*/scheme quick/' "$fakeShape/fluidModel"
+refusedBefore 2 "--scheme 'quick' unknown" rigid.sh --mesh "$fakeMesh" --np 2 --shape-from "$fakeShape"
 # tools/shapeCheck.sh (rigid.sh --shape-from on a run.sh run folder): no run, or not a finished one
 refusedBefore 2 "give --run" tools/shapeCheck.sh
 refusedBefore 2 "has no results/baseline/history.csv" tools/shapeCheck.sh --run "$fakeRigid"

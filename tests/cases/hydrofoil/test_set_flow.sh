@@ -9,7 +9,8 @@
 #    then upwind: 0.9 / 0.8 again; --algorithm simple then simplec: consistent yes, p 1);
 #  - --relaxation U/T overrides the equations' factors (the 2-D section's 0.9 / 0.8), and a
 #    later call without it restores the scheme's;
-#  - the flow model's turbulenceProperties is copied; a bad option: one line, exit 2.
+#  - the flow model's turbulenceProperties is copied; a bad option: one line, exit 2;
+#  - the line it prints names the algorithm in effect, also when --algorithm is left out.
 # usage: test_set_flow.sh WORKDIR
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd)"
@@ -57,9 +58,13 @@ c=$(fresh again); "$setFlow" "$c" --flow turbulent --scheme linearUpwind > /dev/
 "$setFlow" "$c" --flow turbulent --scheme upwind > /dev/null
 check "$c" "linearUpwind, then upwind on the same case" "bounded Gauss upwind" yes 1 0.9 0.8
 "$setFlow" "$c" --flow turbulent --scheme upwind --algorithm simple > /dev/null
-"$setFlow" "$c" --flow turbulent --scheme upwind > /dev/null
+printed=$("$setFlow" "$c" --flow turbulent --scheme upwind)
 check "$c" "SIMPLE, then no --algorithm: SIMPLE stays" "bounded Gauss upwind" no 0.3 0.7 0.7
-"$setFlow" "$c" --flow turbulent --scheme upwind --algorithm simplec > /dev/null
+# the line it prints names the algorithm in effect (tools/fluidCase.sh records it in fluidModel)
+[ "$printed" = "flow=turbulent scheme=upwind algorithm=simple" ] || fail "printed '$printed' (the case's SIMPLE kept)"
+printed=$("$setFlow" "$c" --flow turbulent --scheme upwind --algorithm simplec)
+[ "$printed" = "flow=turbulent scheme=upwind algorithm=simplec" ] || fail "printed '$printed' after --algorithm simplec"
+echo "ok: the printed model names the algorithm in effect"
 check "$c" "SIMPLE, then --algorithm simplec" "bounded Gauss upwind" yes 1 0.9 0.8
 
 c=$(fresh relax); "$setFlow" "$c" --flow turbulent --scheme linearUpwind --relaxation 0.9/0.8 > /dev/null
