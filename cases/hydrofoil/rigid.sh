@@ -39,9 +39,11 @@
 #                        takes longer than a 3-hour session
 #   --resume             go on with the solve in RUNDIR/case from its latest written iteration
 #                        T (a run stopped from outside, e.g. at a session's end), with the same
-#                        options: the case is not rebuilt (--init-from and --root-wall are then
-#                        ignored), the cap stays --max-iterations in all (the rerun may do
-#                        N - T), the stopping test starts anew. rigid.csv's iterations count
+#                        options: the case is not rebuilt (--init-from is then ignored; the flow
+#                        model is the case's own, from its fluidModel, and an option that
+#                        contradicts it is refused; a case made before 2026-12-07 has none),
+#                        the cap stays --max-iterations in all (the rerun may do N - T), the
+#                        stopping test starts anew. rigid.csv's iterations count
 #                        from 0, its cpu_s and wall_s are the last run's only. Without a
 #                        written iteration in RUNDIR/case: exit 2
 #   --shape-from CASE    solve the foil in the shape of a coupled run: CASE is a coupled fluid
@@ -111,6 +113,22 @@ fraction "$bandMean" ||
     die "--band-mean-tolerance '$bandMean' must be 0 (off: the --tolerance) or in (0, 1)"
 [[ "$writeInterval" =~ ^(0|[1-9][0-9]*)$ ]] ||
     die "--write-interval '$writeInterval' must be 0 (fields at the end only) or a positive integer (e.g. 200)"
+# takeModel CASE WHAT: CASE's recorded flow model (its fluidModel, tools/fluidCase.sh) becomes
+# this solve's where no option gives it; an option that contradicts it is refused (WHAT names
+# CASE). Status 1 when CASE records none.
+takeModel() {
+    local src=$1 what=$2 key value var
+    [ -f "$src/fluidModel" ] || return 1
+    while read -r key value; do
+        case "$key" in flow|scheme|algorithm) var=$key ;; root_wall) var=rootWall ;; *) continue ;; esac
+        if [[ "$given" == *" $var "* ]]; then
+            [ "${!var}" = "$value" ] ||
+                die "$what was solved with --${key/_/-} $value (its fluidModel): leave --${key/_/-} out or give $value"
+        else
+            printf -v "$var" '%s' "$value"
+        fi
+    done < "$src/fluidModel"
+}
 [ "$resume" = 1 ] || [ -z "$initFrom" ] || { [ -f "$initFrom/rigid.csv" ] && [ -d "$initFrom/case" ]; } ||
     die "--init-from '$initFrom' is not a finished rigid.sh run (no rigid.csv / case)"
 if [ -n "$shapeFrom" ]; then
@@ -126,23 +144,13 @@ if [ -n "$shapeFrom" ]; then
         [ ! -d "$d" ] || [ -f "$d/0/polyMesh/points" ] ||
             die "--shape-from '$shapeFrom': ${d##*/} has no moved mesh 0/polyMesh/points (a coupled run stopped before its fields were written?); give a coupled run's finished fluid case"
     done
-    # the flow model is the coupled case's own (its fluidModel, tools/fluidCase.sh): taken where
-    # no option gives it, an option that contradicts it refused
-    if [ -f "$shapeFrom/fluidModel" ]; then
-        while read -r key value; do
-            case "$key" in flow|scheme|algorithm) var=$key ;; root_wall) var=rootWall ;; *) continue ;; esac
-            if [[ "$given" == *" $var "* ]]; then
-                [ "${!var}" = "$value" ] ||
-                    die "--shape-from '$shapeFrom' was solved with --${key/_/-} $value (its fluidModel): leave --${key/_/-} out or give $value"
-            else
-                printf -v "$var" '%s' "$value"
-            fi
-        done < "$shapeFrom/fluidModel"
-    else
+    # the flow model is the coupled case's own
+    takeModel "$shapeFrom" "--shape-from '$shapeFrom'" ||
         [[ "$given" == *" flow "* && "$given" == *" scheme "* ]] ||
-            die "--shape-from '$shapeFrom' has no fluidModel (made before 2026-12-07): give the coupled run's --flow and --scheme (and --algorithm, --root-wall as it ran)"
-    fi
+        die "--shape-from '$shapeFrom' has no fluidModel (made before 2026-12-07): give the coupled run's --flow and --scheme (and --algorithm, --root-wall as it ran)"
 fi
+# a resumed solve goes on with its case's model (a case made before 2026-12-07: the options given)
+[ "$resume" = 0 ] || [ -z "$out" ] || takeModel "$out/case" "--resume: $out/case" || true
 "$here/tools/setFlow.sh" --check-only --flow "$flow" --scheme "$scheme" ${algorithm:+--algorithm "$algorithm"}
 case "$rootWall" in wall|slip) ;; *) die "--root-wall '$rootWall' must be wall (the paper's no-slip tunnel) or slip" ;; esac
 [ "$checkOnly" = 0 ] || exit 0

@@ -20,7 +20,8 @@
 # (blcheck.sh through rigid.sh --check-only, which passes valid options), and rigid.sh a bad
 # --write-interval or --max-iterations and a --resume without a restart point (blcheck.sh: without
 # a stopped run), and rigid.sh --shape-from an option that contradicts the coupled case's recorded
-# flow model (fluidModel), or, without one, a missing --flow / --scheme. And mesh.sh refuses
+# flow model (fluidModel), or, without one, a missing --flow / --scheme; --resume one that
+# contradicts its own case's. And mesh.sh refuses
 # --preset finer unless --fluid-mesh cgrid --fluid-only.
 set -uo pipefail
 work=${1:?usage: test_run_options.sh WORK}
@@ -201,6 +202,11 @@ for given in "" "--flow turbulent --scheme linearUpwind --root-wall slip --algor
         echo "FAIL: rigid.sh --check-only --shape-from with the recorded model ($given):"; cat "$work/study.err"; fail=1
     fi
 done
+# a resumed solve keeps its case's recorded model: a contradicting option is refused too
+fakeResume=$work/fake-resume
+rm -rf "$fakeResume"; mkdir -p "$fakeResume/case"; cp "$fakeShape/fluidModel" "$fakeResume/case/"
+refusedBefore 2 "--resume: $fakeResume/case was solved with --flow turbulent" rigid.sh --mesh "$fakeMesh" --resume --flow laminar --out "$fakeResume"
+refusedBefore 2 "has no written iteration" rigid.sh --mesh "$fakeMesh" --resume --out "$fakeResume"   # the model passes
 # ... and it is what rigid.sh validates (a recorded value it does not know is refused)
 sed -i 's/^scheme .*/scheme quick/' "$fakeShape/fluidModel"
 refusedBefore 2 "--scheme 'quick' unknown" rigid.sh --mesh "$fakeMesh" --np 2 --shape-from "$fakeShape"
