@@ -36,7 +36,8 @@
 # level: the coupled and the converged lift and drag and their change, the fluid iteration
 # error the accepted levels carry (second order: coarse about 700 iterations, medium 900, fine
 # about an hour on 2 cores). With HYDROFOIL_REUSE=1 a level's finished shape run is kept, so
-# the check can follow a finished study.
+# the check can follow a finished study, and a shape run stopped from outside (a session's end)
+# goes on from its latest restart point (shapeCheck.sh --resume).
 set -euo pipefail
 : "${FSI_VERIFY_DIR:?run through scripts/verify hydrofoil-cgrid}"
 root=${FSI_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}
@@ -92,15 +93,27 @@ fi
 # the accepted shapes solved on to convergence (HYDROFOIL_SHAPE_CHECK=1)
 [ "$shapeCheck" = 1 ] || exit 0
 export PATH=${FSI_BUILD_DIR:-$root/build}/bin:$PATH   # rigid.sh runs fluid-app
+# restartPoint CASE: CASE (or its processor0) holds a written iteration > 0 (rigid.sh's restart points)
+restartPoint() {
+    local d=$1; [ -d "$d/processor0" ] && d=$d/processor0
+    ls "$d" 2> /dev/null | grep -qE '^[1-9][0-9]*$'
+}
 shapeRuns=()
 for level in "$@"; do
     r=$runs/run-$level
     if [ "${HYDROFOIL_REUSE:-0}" = 1 ] && [ -f "$r/shape-baseline/shape.csv" ]; then
         echo "hydrofoil-cgrid: $level: reusing the shape run in $r/shape-baseline"
     else
-        echo "hydrofoil-cgrid: $level: the accepted shape solved on to convergence ($(date +%H:%M:%S))"
-        rm -rf "$r/shape-baseline"
-        "$root/cases/hydrofoil/tools/shapeCheck.sh" --run "$r" -- "${shapeOpts[@]}" > "$r/log.shape" 2>&1 ||
+        how=()
+        if [ "${HYDROFOIL_REUSE:-0}" = 1 ] && restartPoint "$r/shape-baseline/case"; then
+            echo "hydrofoil-cgrid: $level: going on with the stopped shape run in $r/shape-baseline ($(date +%H:%M:%S))"
+            how=(--resume)
+            [ ! -f "$r/log.shape" ] || mv "$r/log.shape" "$r/log.shape.before-resume"
+        else
+            echo "hydrofoil-cgrid: $level: the accepted shape solved on to convergence ($(date +%H:%M:%S))"
+            rm -rf "$r/shape-baseline"
+        fi
+        "$root/cases/hydrofoil/tools/shapeCheck.sh" --run "$r" ${how[@]+"${how[@]}"} -- "${shapeOpts[@]}" > "$r/log.shape" 2>&1 ||
             { tail -5 "$r/log.shape" >&2; echo "error: hydrofoil-cgrid: $level shape check failed (see $r/log.shape)" >&2; exit 1; }
     fi
     tail -n 1 "$r/log.shape" 2> /dev/null || true

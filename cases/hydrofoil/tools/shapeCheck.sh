@@ -6,8 +6,8 @@
 # far their loads lie from the converged flow at the same shape (cases/hydrofoil/README.md, "The
 # coupled levels' fluid iteration error").
 #
-#   cases/hydrofoil/tools/shapeCheck.sh --run RUN [--material baseline] [--out DIR] [--]
-#       [rigid.sh options: --band-tolerance, --max-iterations, --np, ...]
+#   cases/hydrofoil/tools/shapeCheck.sh --run RUN [--material baseline] [--out DIR] [--resume]
+#       [--] [rigid.sh options: --band-tolerance, --max-iterations, --np, ...]
 #
 #   --run RUN          a finished run.sh run folder: RUN/mesh/fluid, RUN/fluid-MATERIAL (the
 #                      coupled fluid case with its written moved mesh) and
@@ -15,6 +15,10 @@
 #   --material M       the run's --material (default baseline: the t = 0 state; visco: the last
 #                      level written)
 #   --out DIR          rigid.sh's run folder (default RUN/shape-MATERIAL)
+#   --resume           go on with a shape solve stopped from outside (e.g. at a session's end) from
+#                      its latest restart point (rigid.sh --resume on DIR/case: its moved mesh and
+#                      flow model kept; give the same stopping options). shape.csv's iterations
+#                      and cost are then the resumed part's only
 #   the rest           passed to rigid.sh: the shape solve's stopping test (--tolerance,
 #                      --band-tolerance, --band-mean-tolerance, --max-iterations). The flow model
 #                      is the run's own (rigid.sh --shape-from reads its fluid case's fluidModel;
@@ -30,12 +34,13 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 die() { echo "error: shapeCheck.sh: $*" >&2; exit 2; }
-run="" material=baseline out=""
+run="" material=baseline out="" resume=0
 while [ $# -gt 0 ]; do
     case "$1" in
         --run) [ $# -ge 2 ] || die "--run needs a run folder"; run=$2; shift 2 ;;
         --material) [ $# -ge 2 ] || die "--material needs a name"; material=$2; shift 2 ;;
         --out) [ $# -ge 2 ] || die "--out needs a folder"; out=$2; shift 2 ;;
+        --resume) resume=1; shift ;;
         --) shift; break ;;
         *) break ;;
     esac
@@ -47,10 +52,12 @@ history=$run/results/$material/history.csv fluidCase=$run/fluid-$material
 [ -d "$fluidCase" ] || die "--run '$run' has no fluid-$material case"
 [ -d "$run/mesh/fluid" ] || die "--run '$run' has no mesh/fluid"
 out=${out:-$run/shape-$material}
-case " $* " in *" --shape-from "*|*" --mesh "*|*" --out "*) die "--shape-from, --mesh and --out are this tool's to set" ;; esac
+case " $* " in *" --shape-from "*|*" --mesh "*|*" --out "*|*" --resume "*) die "--shape-from, --mesh, --out and --resume are this tool's to set" ;; esac
+[ "$resume" = 0 ] || [ -d "$out/case" ] || die "--resume: '$out' has no shape solve to go on with (start without --resume)"
 
 ranks=$(find "$fluidCase" -maxdepth 1 -type d -name 'processor[0-9]*' | wc -l)
-"$here/rigid.sh" --mesh "$run/mesh/fluid" --out "$out" --shape-from "$fluidCase" \
+start=(--shape-from "$fluidCase"); [ "$resume" = 0 ] || start=(--resume)
+"$here/rigid.sh" --mesh "$run/mesh/fluid" --out "$out" "${start[@]}" \
     --np "$((ranks > 0 ? ranks : 1))" "$@" || exit $?
 [ -f "$out/rigid.csv" ] || { echo "error: shapeCheck.sh: rigid.sh wrote no $out/rigid.csv" >&2; exit 1; }
 

@@ -21,7 +21,8 @@
 # --write-interval or --max-iterations and a --resume without a restart point (blcheck.sh: without
 # a stopped run), and rigid.sh --shape-from an option that contradicts the coupled case's recorded
 # flow model (fluidModel), or, without one, a missing --flow / --scheme; --resume one that
-# contradicts its own case's. And mesh.sh refuses
+# contradicts its own case's; tools/shapeCheck.sh a --resume without a stopped shape solve.
+# And mesh.sh refuses
 # --preset finer unless --fluid-mesh cgrid --fluid-only.
 set -uo pipefail
 work=${1:?usage: test_run_options.sh WORK}
@@ -213,6 +214,12 @@ refusedBefore 2 "--scheme 'quick' unknown" rigid.sh --mesh "$fakeMesh" --np 2 --
 # tools/shapeCheck.sh (rigid.sh --shape-from on a run.sh run folder): no run, or not a finished one
 refusedBefore 2 "give --run" tools/shapeCheck.sh
 refusedBefore 2 "has no results/baseline/history.csv" tools/shapeCheck.sh --run "$fakeRigid"
+# --resume without a stopped shape solve, or --resume among rigid.sh's options
+fakeRun=$work/fake-run
+rm -rf "$fakeRun"; mkdir -p "$fakeRun/results/baseline" "$fakeRun/fluid-baseline" "$fakeRun/mesh/fluid"
+: > "$fakeRun/results/baseline/history.csv"
+refusedBefore 2 "has no shape solve to go on with" tools/shapeCheck.sh --run "$fakeRun" --resume
+refusedBefore 2 "are this tool's to set" tools/shapeCheck.sh --run "$fakeRun" -- --resume
 # mesh.sh --preset finer (the mesh studies' fourth level) exists only as a cgrid fluid mesh:
 # anything else is refused in one line naming it, before mesh.sh makes its --out
 refusedBefore nz "--preset finer" mesh.sh --preset finer
