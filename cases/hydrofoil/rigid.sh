@@ -53,10 +53,11 @@
 #                        initial ones. The flow model (--flow, --scheme, --algorithm,
 #                        --root-wall) is CASE's own, from its fluidModel (tools/fluidCase.sh):
 #                        an option that contradicts it is refused; a CASE made before
-#                        2026-12-07 has none, then --flow and --scheme must be given. The converged coupled state's loads
-#                        come back if its flow is steady; for one accepted in the mean it gives
-#                        the frozen shape's steady or long-window mean loads. Not with
-#                        --init-from or --resume (a resumed shape run keeps its mesh)
+#                        2026-12-07 has none, then --flow and --scheme must be given. The
+#                        converged coupled state's loads come back if its flow is steady; for
+#                        one accepted in the mean it gives the frozen shape's steady or
+#                        long-window mean loads. Not with --init-from or --resume (a resumed
+#                        shape run keeps its mesh: --resume alone, tools/shapeCheck.sh --resume)
 #   --check-only         validate the options' values and exit: 0, or 2 with the one-line error;
 #                        writes nothing and needs neither --mesh, --out nor fluid-app (blcheck.sh
 #                        calls it before it meshes)
@@ -72,7 +73,7 @@ set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 mesh="" out="" flow=laminar scheme=upwind np=2 tol=1e-5 maxIt=3000 initFrom="" algorithm="" band=0 bandMean=0 rootWall=wall checkOnly=0
 writeInterval=200 resume=0 shapeFrom=""
-given=" "   # the flow-model options given (variable names), for --shape-from
+given=" "   # the flow-model options given (variable names), for --shape-from and --resume
 die() { echo "error: rigid.sh: $*" >&2; exit 2; }
 # fraction VALUE: VALUE is 0 or a number in (0, 1)
 fraction() { awk -v v="$1" 'BEGIN{exit !(v ~ /^[0-9.eE+-]+$/ && v + 0 >= 0 && v + 0 < 1)}'; }
