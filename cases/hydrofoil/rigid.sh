@@ -9,6 +9,8 @@
 #       [--root-wall wall|slip] [--write-interval 200] [--resume] [--shape-from CASE]
 #       [--check-only]
 #
+#   --np N               fluid ranks (default 2; with --shape-from or --resume: the decomposition
+#                        of the source case, which a given --np must match for --shape-from)
 #   --tolerance T        stop when the estimated force error is <= T |F|, held 100 iterations
 #                        (fsiDict rigid/estimateForceError; the 2-D section mode's criterion)
 #   --max-iterations N   cap on SIMPLE iterations (not converged: reported, exit 0)
@@ -73,7 +75,7 @@ set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 mesh="" out="" flow=laminar scheme=upwind np=2 tol=1e-5 maxIt=3000 initFrom="" algorithm="" band=0 bandMean=0 rootWall=wall checkOnly=0
 writeInterval=200 resume=0 shapeFrom=""
-given=" "   # the flow-model options given (variable names), for --shape-from and --resume
+given=" "   # the model and --np options given (variable names), for --shape-from and --resume
 die() { echo "error: rigid.sh: $*" >&2; exit 2; }
 # fraction VALUE: VALUE is 0 or a number in (0, 1)
 fraction() { awk -v v="$1" 'BEGIN{exit !(v ~ /^[0-9.eE+-]+$/ && v + 0 >= 0 && v + 0 < 1)}'; }
@@ -83,7 +85,7 @@ while [ $# -gt 0 ]; do
         --out) out="$2"; shift 2 ;;
         --flow) flow="$2"; given+="flow "; shift 2 ;;
         --scheme) scheme="$2"; given+="scheme "; shift 2 ;;
-        --np) np="$2"; shift 2 ;;
+        --np) np="$2"; given+="np "; shift 2 ;;
         --tolerance) tol="$2"; shift 2 ;;
         --max-iterations) maxIt="$2"; shift 2 ;;
         --init-from) initFrom="$2"; shift 2 ;;
@@ -114,6 +116,11 @@ fraction "$bandMean" ||
     die "--band-mean-tolerance '$bandMean' must be 0 (off: the --tolerance) or in (0, 1)"
 [[ "$writeInterval" =~ ^(0|[1-9][0-9]*)$ ]] ||
     die "--write-interval '$writeInterval' must be 0 (fields at the end only) or a positive integer (e.g. 200)"
+# ranksOf CASE: the ranks CASE is decomposed for (its processor folders; 1: serial)
+ranksOf() {
+    local n; n=$(find "$1" -maxdepth 1 -type d -name 'processor[0-9]*' 2> /dev/null | wc -l)
+    echo $((n > 0 ? n : 1))
+}
 # takeModel CASE WHAT: CASE's recorded flow model (its fluidModel, tools/fluidCase.sh) becomes
 # this solve's where no option gives it; an option that contradicts it is refused (WHAT names
 # CASE). Status 1 when CASE records none.
@@ -137,10 +144,13 @@ if [ -n "$shapeFrom" ]; then
         die "--shape-from starts from the coupled case's flow: not with --init-from or --resume"
     [ -f "$shapeFrom/processor0/0/polyMesh/points" ] || [ -f "$shapeFrom/0/polyMesh/points" ] ||
         die "--shape-from '$shapeFrom' has no moved mesh (0/polyMesh/points or processor0/0/polyMesh/points); give a coupled run's fluid case, e.g. RUN/fluid-baseline"
-    shapeRanks=0
-    [ ! -d "$shapeFrom/processor0" ] || shapeRanks=$(ls -d "$shapeFrom"/processor[0-9]* | wc -l)
-    [ "$shapeRanks" -eq "$((np > 1 ? np : 0))" ] ||
-        die "--shape-from '$shapeFrom' is decomposed for $shapeRanks rank(s) (0: serial); give --np ${shapeRanks/#0/1}"
+    shapeRanks=$(ranksOf "$shapeFrom")
+    if [[ "$given" == *" np "* ]]; then
+        [ "$shapeRanks" -eq "$np" ] ||
+            die "--shape-from '$shapeFrom' is decomposed for $shapeRanks rank(s) (1: serial); give --np $shapeRanks or leave --np out"
+    else
+        np=$shapeRanks
+    fi
     for d in "$shapeFrom"/processor[0-9]*; do
         [ ! -d "$d" ] || [ -f "$d/0/polyMesh/points" ] ||
             die "--shape-from '$shapeFrom': ${d##*/} has no moved mesh 0/polyMesh/points (a coupled run stopped before its fields were written?); give a coupled run's finished fluid case"
@@ -151,7 +161,11 @@ if [ -n "$shapeFrom" ]; then
         die "--shape-from '$shapeFrom' has no fluidModel (made before 2026-12-07): give the coupled run's --flow and --scheme (and --algorithm, --root-wall as it ran)"
 fi
 # a resumed solve goes on with its case's model (a case made before 2026-12-07: the options given)
-[ "$resume" = 0 ] || [ -z "$out" ] || takeModel "$out/case" "--resume: $out/case" || true
+# and, unless --np is given, its decomposition
+if [ "$resume" = 1 ] && [ -n "$out" ]; then
+    takeModel "$out/case" "--resume: $out/case" || true
+    [[ "$given" == *" np "* ]] || np=$(ranksOf "$out/case")
+fi
 "$here/tools/setFlow.sh" --check-only --flow "$flow" --scheme "$scheme" ${algorithm:+--algorithm "$algorithm"}
 case "$rootWall" in wall|slip) ;; *) die "--root-wall '$rootWall' must be wall (the paper's no-slip tunnel) or slip" ;; esac
 [ "$checkOnly" = 0 ] || exit 0

@@ -37,7 +37,8 @@
 # error the accepted levels carry (second order: coarse about 700 iterations, medium 900, fine
 # about an hour on 2 cores). With HYDROFOIL_REUSE=1 a level's finished shape run is kept, so
 # the check can follow a finished study, and a shape run stopped from outside (a session's end)
-# goes on from its latest restart point (shapeCheck.sh --resume).
+# goes on from its latest restart point (shapeCheck.sh --resume; one stopped before its first
+# restart point is refused by rigid.sh: remove its shape-baseline folder).
 set -euo pipefail
 : "${FSI_VERIFY_DIR:?run through scripts/verify hydrofoil-cgrid}"
 root=${FSI_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}
@@ -93,11 +94,6 @@ fi
 # the accepted shapes solved on to convergence (HYDROFOIL_SHAPE_CHECK=1)
 [ "$shapeCheck" = 1 ] || exit 0
 export PATH=${FSI_BUILD_DIR:-$root/build}/bin:$PATH   # rigid.sh runs fluid-app
-# restartPoint CASE: CASE (or its processor0) holds a written iteration > 0 (rigid.sh's restart points)
-restartPoint() {
-    local d=$1; [ -d "$d/processor0" ] && d=$d/processor0
-    ls "$d" 2> /dev/null | grep -qE '^[1-9][0-9]*$'
-}
 shapeRuns=()
 for level in "$@"; do
     r=$runs/run-$level
@@ -105,7 +101,7 @@ for level in "$@"; do
         echo "hydrofoil-cgrid: $level: reusing the shape run in $r/shape-baseline"
     else
         how=()
-        if [ "${HYDROFOIL_REUSE:-0}" = 1 ] && restartPoint "$r/shape-baseline/case"; then
+        if [ "${HYDROFOIL_REUSE:-0}" = 1 ] && [ -d "$r/shape-baseline/case" ]; then   # as hydrofoil-3d-rigid
             echo "hydrofoil-cgrid: $level: going on with the stopped shape run in $r/shape-baseline ($(date +%H:%M:%S))"
             how=(--resume)
             [ ! -f "$r/log.shape" ] || mv "$r/log.shape" "$r/log.shape.before-resume"

@@ -23,8 +23,8 @@
 #                      --band-tolerance, --band-mean-tolerance, --max-iterations). The flow model
 #                      is the run's own (rigid.sh --shape-from reads its fluid case's fluidModel;
 #                      a run made before 2026-12-07 has none: then give its --flow, --scheme and,
-#                      as it ran, --algorithm and --root-wall). --np is the run's fluid rank
-#                      count (its processor folders), unless given
+#                      as it ran, --algorithm and --root-wall). --np: rigid.sh takes the run's
+#                      fluid case's decomposition unless it is given
 #
 # Writes DIR (rigid.sh's case and rigid.csv) and DIR/shape.csv, one row: time_s (the state's
 # time), coupled_lift_N, shape_lift_N, lift_change_pct, coupled_drag_N, shape_drag_N,
@@ -53,12 +53,9 @@ history=$run/results/$material/history.csv fluidCase=$run/fluid-$material
 [ -d "$run/mesh/fluid" ] || die "--run '$run' has no mesh/fluid"
 out=${out:-$run/shape-$material}
 case " $* " in *" --shape-from "*|*" --mesh "*|*" --out "*|*" --resume "*) die "--shape-from, --mesh, --out and --resume are this tool's to set" ;; esac
-[ "$resume" = 0 ] || [ -d "$out/case" ] || die "--resume: '$out' has no shape solve to go on with (start without --resume)"
 
-ranks=$(find "$fluidCase" -maxdepth 1 -type d -name 'processor[0-9]*' | wc -l)
 start=(--shape-from "$fluidCase"); [ "$resume" = 0 ] || start=(--resume)
-"$here/rigid.sh" --mesh "$run/mesh/fluid" --out "$out" "${start[@]}" \
-    --np "$((ranks > 0 ? ranks : 1))" "$@" || exit $?
+"$here/rigid.sh" --mesh "$run/mesh/fluid" --out "$out" "${start[@]}" "$@" || exit $?
 [ -f "$out/rigid.csv" ] || { echo "error: shapeCheck.sh: rigid.sh wrote no $out/rigid.csv" >&2; exit 1; }
 
 /usr/bin/python3 - "$history" "$out/rigid.csv" "$out/shape.csv" <<'EOP'

@@ -203,6 +203,17 @@ for given in "" "--flow turbulent --scheme linearUpwind --root-wall slip --algor
         echo "FAIL: rigid.sh --check-only --shape-from with the recorded model ($given):"; cat "$work/study.err"; fail=1
     fi
 done
+# without --np the shape solve takes the source's decomposition (a serial source: 1 rank, which
+# the default 2 would contradict)
+fakeSerial=$work/fake-serial
+rm -rf "$fakeSerial"; mkdir -p "$fakeSerial/0/polyMesh"; : > "$fakeSerial/0/polyMesh/points"
+cp "$fakeShape/fluidModel" "$fakeSerial/"
+if "$FSI_ROOT/cases/hydrofoil/rigid.sh" --check-only --shape-from "$fakeSerial" > "$work/study.out" 2> "$work/study.err"; then
+    echo "ok: rigid.sh --check-only --shape-from a serial case without --np: exit 0"
+else
+    echo "FAIL: rigid.sh --check-only --shape-from a serial case without --np:"; cat "$work/study.err"; fail=1
+fi
+refusedBefore 2 "give --np 1 or leave --np out" rigid.sh --mesh "$fakeMesh" --np 2 --shape-from "$fakeSerial"
 # a resumed solve keeps its case's recorded model: a contradicting option is refused too
 fakeResume=$work/fake-resume
 rm -rf "$fakeResume"; mkdir -p "$fakeResume/case"; cp "$fakeShape/fluidModel" "$fakeResume/case/"
@@ -216,9 +227,10 @@ refusedBefore 2 "give --run" tools/shapeCheck.sh
 refusedBefore 2 "has no results/baseline/history.csv" tools/shapeCheck.sh --run "$fakeRigid"
 # --resume without a stopped shape solve, or --resume among rigid.sh's options
 fakeRun=$work/fake-run
-rm -rf "$fakeRun"; mkdir -p "$fakeRun/results/baseline" "$fakeRun/fluid-baseline" "$fakeRun/mesh/fluid"
+rm -rf "$fakeRun"; mkdir -p "$fakeRun/results/baseline" "$fakeRun/fluid-baseline" "$fakeRun/mesh/fluid/constant/polyMesh"
+: > "$fakeRun/mesh/fluid/constant/polyMesh/owner"
 : > "$fakeRun/results/baseline/history.csv"
-refusedBefore 2 "has no shape solve to go on with" tools/shapeCheck.sh --run "$fakeRun" --resume
+refusedBefore 2 "has no written iteration" tools/shapeCheck.sh --run "$fakeRun" --resume
 refusedBefore 2 "are this tool's to set" tools/shapeCheck.sh --run "$fakeRun" -- --resume
 # mesh.sh --preset finer (the mesh studies' fourth level) exists only as a cgrid fluid mesh:
 # anything else is refused in one line naming it, before mesh.sh makes its --out
