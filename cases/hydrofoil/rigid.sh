@@ -49,7 +49,7 @@
 #                        from 0, its cpu_s and wall_s are the last run's only. Without a
 #                        written iteration in RUNDIR/case: exit 2
 #   --shape-from CASE    solve the foil in the shape of a coupled run: CASE is a coupled fluid
-#                        case of run.sh (RUN/fluid-baseline, on the same --mesh and --np); its
+#                        case of run.sh (RUN/fluid-baseline, on the same --mesh; --np: its ranks); its
 #                        written moved mesh (processor*/0/polyMesh/points, or 0/polyMesh/points
 #                        with --np 1) and flow (the fields this case has) replace the case's
 #                        initial ones. The flow model (--flow, --scheme, --algorithm,
