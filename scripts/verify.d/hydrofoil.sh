@@ -17,7 +17,9 @@
 #   HYDROFOIL_LEVELS   preset list, coarse to fine (default "coarse medium fine")
 #   HYDROFOIL_RUNS     folder of the mesh-LEVEL/ and run-LEVEL/ folders (default $FSI_VERIFY_DIR)
 #   HYDROFOIL_REUSE=1  keep a level's mesh (mesh-LEVEL/mesh/mesh-summary.txt) and finished run
-#                      (run-LEVEL/results/baseline/history.csv) instead of redoing them
+#                      (run-LEVEL: its run time recorded and an accepted row in
+#                      results/baseline/history.csv) instead of redoing them; a run stopped
+#                      from outside (empty time.run, no accepted row) is done again
 #   HYDROFOIL_TIMEOUT  longest wait of either program for the other [s] (default 3600: on fine
 #                      the solid's set-up, RBF mapping of 49 k wetted nodes and the first
 #                      factorization, took longer than run.sh's default 900 s under load)
@@ -100,7 +102,8 @@ for level in $levels; do
     { time "$case_dir/mesh.sh" --out "$m/mesh" --preset "$level" --np "$npf" --fluid-mesh "$fluidMesh" > "$m/log.mesh" 2>&1; } 2> "$m/time.mesh" ||
       { echo "error: hydrofoil $level meshing failed, see $m/log.mesh" >&2; tail -5 "$m/log.mesh" >&2; exit 1; }
   fi
-  if [ "$reuse" = 1 ] && [ -f "$r/results/baseline/history.csv" ] && [ -f "$r/time.run" ]; then
+  # `time` writes time.run when run.sh ends, so a run killed midway leaves it empty
+  if [ "$reuse" = 1 ] && [ -s "$r/time.run" ] && [ "$(wc -l < "$r/results/baseline/history.csv" 2> /dev/null || echo 0)" -ge 2 ]; then
     echo "hydrofoil: $level: reusing the run in $r"
   else
     echo "hydrofoil: $level: coupled baseline in $r ($(date +%H:%M:%S), load $(cut -d' ' -f1 /proc/loadavg))"
