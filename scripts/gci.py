@@ -10,7 +10,10 @@ h1 < h2 < h3 (h = (volume / cells)^(1/dim)):
     extrapolated phi_ext = (r21^p phi1 - phi2) / (r21^p - 1)
     GCI_fine = Fs |(phi1 - phi2)/phi1| / (r21^p - 1), Fs = 1.25 (three meshes)
 Only monotone convergence (0 < e21/e32 < 1) gets an order: oscillatory (e32/e21 < 0) and
-diverging (|e21| >= |e32|) sequences are flagged and get NaN.
+diverging (|e21| >= |e32|) sequences are flagged and get NaN. Every sequence also gets
+    range_uncertainty_pct = 100 (max phi - min phi) / 2 / |phi1|,
+the estimate for oscillatory convergence (Stern, Wilson, Coleman & Paterson, J. Fluids Eng. 123,
+2001: U = (S_U - S_L) / 2, half the range of the solutions).
 
 CLI: gci.py H3,PHI3 H2,PHI2 H1,PHI1  -> prints observed_order, extrapolated, gci_fine_pct.
 """
@@ -21,9 +24,10 @@ import sys
 def gci(h, phi, fs=1.25, maxIter=200):
     """h, phi: three values each, coarsest first. Returns a dict with observed_order,
     extrapolated, gci_fine_pct (percent of phi1), rel_diff_fine (|phi1 - phi2|/|phi1|),
-    convergence ('monotone' | 'oscillatory' | 'diverging' | 'converged' | 'indeterminate') and
+    convergence ('monotone' | 'oscillatory' | 'diverging' | 'converged' | 'indeterminate'),
     asymptotic_ratio: the error estimate of the medium mesh |e32|/(r32^p - 1) over r21^p times
-    that of the fine mesh |e21|/(r21^p - 1) (1 in the asymptotic range)."""
+    that of the fine mesh |e21|/(r21^p - 1) (1 in the asymptotic range), and
+    range_uncertainty_pct: half the range of the three values in percent of |phi1|."""
     if len(h) != 3 or len(phi) != 3:
         raise ValueError("gci: three levels needed (coarsest first)")
     h3, h2, h1 = (float(v) for v in h)
@@ -34,7 +38,9 @@ def gci(h, phi, fs=1.25, maxIter=200):
     e21, e32 = p2 - p1, p3 - p2
     out = dict(r21=r21, r32=r32, observed_order=float("nan"), extrapolated=float("nan"),
                gci_fine_pct=float("nan"), rel_diff_fine=abs(e21) / abs(p1) if p1 else float("nan"),
-               asymptotic_ratio=float("nan"))
+               asymptotic_ratio=float("nan"),
+               range_uncertainty_pct=(100.0 * 0.5 * (max(p1, p2, p3) - min(p1, p2, p3)) / abs(p1)
+                                      if p1 else float("nan")))
     if e21 == 0.0 and e32 == 0.0:
         out.update(convergence="converged", observed_order=float("inf"), extrapolated=p1,
                    gci_fine_pct=0.0)

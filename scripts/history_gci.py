@@ -13,9 +13,10 @@ scripts/gci.py (Celik et al. 2008: observed order, extrapolated value, GCI_fine;
 three values converge monotonically) and writes GCI_CSV with the columns
     quantity,model,levels,observed_order,extrapolated,gci_fine_pct,convergence,
     coarse,medium,fine,rel_diff_coarse_fine,rel_diff_medium_fine
-(quantity: e.g. tip_aoa_deg@t=360), then asymptotic_ratio (gci.py: 1 in the asymptotic range)
-and asymptotic_range (yes when the sequence is monotone with an observed order between 1 and 3
-and every level's solve met its stopping test). --table prints the same as a Markdown table.
+(quantity: e.g. tip_aoa_deg@t=360), then asymptotic_ratio (gci.py: 1 in the asymptotic range),
+asymptotic_range (yes when the sequence is monotone with an observed order between 1 and 3 and
+every level's solve met its stopping test) and range_uncertainty_pct (below). --table prints
+the same as a Markdown table.
 
 --rigid: COARSE, MEDIUM, FINE are rigid-foil runs (cases/hydrofoil/rigid.sh folders with
 rigid.csv, or blcheck.sh folders with rigid/rigid.csv; the cell count is rigid.csv's); the
@@ -28,7 +29,14 @@ rigid.csv says converged = 1.
 mesh/mesh-summary.txt); the quantities are the tip AOA [deg], the tip deflection [m] (along the
 lift direction -y, the mean of the tip leading and trailing edge points) and the lift -F_y and
 drag F_x [N], all with the suffix @t=0; a level counts as settled when history.csv says
-converged = 1.
+converged = 1. When all three folders hold a shape check (shape-baseline/shape.csv of
+cases/hydrofoil/tools/shapeCheck.sh: the accepted shape solved on to convergence), its lift and
+drag are two more quantities, shape_lift_N@t=0 and shape_drag_N@t=0 (settled when shape.csv
+says converged = 1): the coupled loads without the coupled solves' fluid iteration error.
+
+Every row also gets range_uncertainty_pct: half the spread of the three values over |fine|, in
+percent, the uncertainty estimate for oscillatory convergence (Stern et al., J. Fluids Eng. 123,
+2001: U = (max - min) / 2), where no order and hence no GCI exists.
 
 With --out, rows of GCI_CSV with another model are kept (one file holds several studies, one
 block per model); rows of this model are replaced.
@@ -112,6 +120,21 @@ def steady_run(folder):
     return fluid_cells(summary), values, r.get("converged") == "1"
 
 
+def shape_check(folder):
+    """({shape_lift_N@t=0, shape_drag_N@t=0}, converged) of FOLDER's shape check, or None when
+    it has none (shape-baseline/shape.csv)."""
+    path = os.path.join(folder, "shape-baseline", "shape.csv")
+    if not os.path.isfile(path):
+        return None
+    rows = list(csv.DictReader(open(path)))
+    try:
+        r = rows[-1]
+        return ({"shape_lift_N@t=0": float(r["shape_lift_N"]),
+                 "shape_drag_N@t=0": float(r["shape_drag_N"])}, r.get("converged") == "1")
+    except (IndexError, KeyError, ValueError) as e:
+        fail(f"{path}: no row with numbers in shape_lift_N and shape_drag_N ({e})")
+
+
 def rigid_run(folder):
     """cells, {quantity: value} and converged (bool) of a rigid.sh / blcheck.sh folder."""
     for path in (os.path.join(folder, "rigid.csv"), os.path.join(folder, "rigid", "rigid.csv")):
@@ -168,10 +191,16 @@ def main(argv):
         fail("three run folders needed, coarsest first (COARSE MEDIUM FINE)")
     if model is None:
         model = "turbulent-upwind-cgrid" if rigid else "laminar-upwind"
+    shape_settled = False
     if rigid:
         runs = [rigid_run(f) for f in folders]
     elif steady:
         runs = [steady_run(f) for f in folders]
+        shapes = [shape_check(f) for f in folders]
+        if all(shapes):
+            for (_, values, _), (shape_values, _) in zip(runs, shapes):
+                values.update(shape_values)
+            shape_settled = all(ok for _, ok in shapes)
     else:
         runs = history_runs(folders)
     cells = [c for c, _, _ in runs]
@@ -186,7 +215,8 @@ def main(argv):
     for quantity in runs[0][1]:
         phi = [values[quantity] for _, values, _ in runs]
         g = gci.gci(h, phi)
-        asymptotic = (settled and g["convergence"] == "monotone"
+        settled_here = shape_settled if quantity.startswith("shape_") else settled
+        asymptotic = (settled_here and g["convergence"] == "monotone"
                       and 1.0 <= g["observed_order"] <= 3.0)
         rows.append({
             "quantity": quantity, "model": model,
@@ -197,22 +227,24 @@ def main(argv):
             "rel_diff_coarse_fine": (phi[0] - phi[2]) / phi[2],
             "rel_diff_medium_fine": (phi[1] - phi[2]) / phi[2],
             "asymptotic_ratio": g["asymptotic_ratio"],
-            "asymptotic_range": "yes" if asymptotic else "no"})
+            "asymptotic_range": "yes" if asymptotic else "no",
+            "range_uncertainty_pct": g["range_uncertainty_pct"]})
     columns = list(rows[0].keys())
     if out:
         write_model_rows(out, columns, model, [{k: (f"{v:.6g}" if isinstance(v, float) else v)
                                                 for k, v in r.items()} for r in rows])
     if table or not out:
         print("| quantity | coarse | medium | fine | coarse vs fine | medium vs fine | "
-              "convergence | order | GCI_fine |")
-        print("|---|---|---|---|---|---|---|---|---|")
+              "convergence | order | GCI_fine | range / 2 |")
+        print("|---|---|---|---|---|---|---|---|---|---|")
         for r in rows:
             def num(v, fmt):
                 return fmt % v if not math.isnan(v) else "-"
             print(f"| {r['quantity']} | {r['coarse']:.4g} | {r['medium']:.4g} | {r['fine']:.4g} | "
                   f"{100 * r['rel_diff_coarse_fine']:+.1f} % | "
                   f"{100 * r['rel_diff_medium_fine']:+.1f} % | {r['convergence']} | "
-                  f"{num(r['observed_order'], '%.2f')} | {num(r['gci_fine_pct'], '%.2f %%')} |")
+                  f"{num(r['observed_order'], '%.2f')} | {num(r['gci_fine_pct'], '%.2f %%')} | "
+                  f"{num(r['range_uncertainty_pct'], '%.2f %%')} |")
 
 
 if __name__ == "__main__":

@@ -35,7 +35,8 @@
 # HYDROFOIL_SHAPE_MAX_ITERATIONS, default 3000), and this folder's shape.csv gets one row per
 # level: the coupled and the converged lift and drag and their change, the fluid iteration
 # error the accepted levels carry (second order: coarse about 700 iterations, medium 900, fine
-# about an hour on 2 cores). With HYDROFOIL_REUSE=1 a level's finished shape run is kept, so
+# about an hour on 2 cores); with three levels both gci.csv files get the rows
+# shape_lift_N@t=0 and shape_drag_N@t=0 (their order and GCI). With HYDROFOIL_REUSE=1 a level's finished shape run is kept, so
 # the check can follow a finished study, and a shape run stopped from outside (a session's end)
 # goes on from its latest restart point (shapeCheck.sh --resume; one stopped before its first
 # restart point is refused by rigid.sh: remove its shape-baseline folder).
@@ -127,3 +128,11 @@ for arg in sys.argv[4:]:
 columns = ["model", "level"] + [c for c in rows[0] if c not in ("model", "level")]
 write_model_rows(out, columns, model, rows)
 PY
+# with three levels the converged lift and drag at the accepted shapes get their own order and
+# GCI (history_gci.py --steady adds shape_lift_N@t=0, shape_drag_N@t=0 when every level has one)
+if [ $# = 3 ]; then
+  for out in "$study/gci.csv" "$root/verification/hydrofoil/gci.csv"; do
+    "$FSI_PYTHON" "$root/scripts/history_gci.py" --steady --model "$model" --out "$out" \
+        "$runs/run-$1" "$runs/run-$2" "$runs/run-$3" > /dev/null
+  done
+fi

@@ -34,6 +34,17 @@ class GciTest(unittest.TestCase):
         self.assertEqual(gci([4, 2, 1], [1.0, 1.1, 1.3])["convergence"], "diverging")
         self.assertTrue(math.isnan(gci([4, 2, 1], [1.0, 1.1, 1.3])["observed_order"]))
 
+    def test_range_uncertainty(self):
+        # half the range over |fine|: (1.2 - 1.0) / 2 / 1.1 for the oscillatory sequence, and
+        # the same rule for any other (here monotone, range 0.9 + 0.3 = 1.2 about phi1 = 2.3)
+        r = gci([4, 2, 1], [1.0, 1.2, 1.1])
+        self.assertEqual(r["convergence"], "oscillatory")
+        self.assertAlmostEqual(r["range_uncertainty_pct"], 100 * 0.1 / 1.1, places=10)
+        self.assertAlmostEqual(gci([4, 2, 1], [2 + 0.3 * v * v for v in (4, 2, 1)])
+                               ["range_uncertainty_pct"], 100 * 0.5 * 4.5 / 2.3, places=10)
+        self.assertAlmostEqual(gci([4, 2, 1], [-1.0, -1.2, -1.1])["range_uncertainty_pct"],
+                               100 * 0.1 / 1.1, places=10)
+
     def test_bad_input(self):
         with self.assertRaises(ValueError):
             gci([1, 2, 4], [1, 2, 3])
@@ -152,7 +163,9 @@ class SteadyGciTest(unittest.TestCase):
 
     CELLS = (276336, 595390, 1277256)
 
-    def make_run(self, root, name, cells, converged=1):
+    def make_run(self, root, name, cells, converged=1, shape_converged=None):
+        """shape_converged 0 or 1: also a shape check (shape-baseline/shape.csv) whose lift
+        follows 1.25 + 50 h^2 and drag 0.35 + 10 h^2."""
         folder = os.path.join(root, name)
         os.makedirs(os.path.join(folder, "results", "baseline"))
         os.makedirs(os.path.join(folder, "mesh"))
@@ -166,7 +179,49 @@ class SteadyGciTest(unittest.TestCase):
             f.write("0,0,%d,%.15g,%.15g,%.15g,%.15g,%.15g\n"
                     % (converged, 0.36 + 20.0 * h2, -(1.3 + 60.0 * h2), -defl + 1e-3, -defl - 1e-3,
                        -2.6 - 100.0 * h2))
+        if shape_converged is not None:
+            os.makedirs(os.path.join(folder, "shape-baseline"))
+            with open(os.path.join(folder, "shape-baseline", "shape.csv"), "w") as f:
+                f.write("time_s,coupled_lift_N,shape_lift_N,coupled_drag_N,shape_drag_N,converged\n"
+                        "0,%.15g,%.15g,%.15g,%.15g,%d\n"
+                        % (1.3 + 60.0 * h2, 1.25 + 50.0 * h2, 0.36 + 20.0 * h2, 0.35 + 10.0 * h2,
+                           shape_converged))
         return folder
+
+    def test_shape_check_quantities(self):
+        import csv
+        import subprocess
+        import tempfile
+        script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..",
+                              "scripts", "history_gci.py")
+        names = ("coarse", "medium", "fine")
+        with tempfile.TemporaryDirectory() as root:
+            out = os.path.join(root, "gci.csv")
+            runs = [self.make_run(root, n, c, shape_converged=1) for n, c in zip(names, self.CELLS)]
+            subprocess.run([sys.executable, script, "--steady", "--model", "m", "--out", out] + runs,
+                           check=True, capture_output=True)
+            rows = {r["quantity"]: r for r in csv.DictReader(open(out))}
+            self.assertEqual(len(rows), 6)
+            for q, ext in (("shape_lift_N@t=0", 1.25), ("shape_drag_N@t=0", 0.35)):
+                self.assertAlmostEqual(float(rows[q]["observed_order"]), 2.0, places=4)
+                self.assertAlmostEqual(float(rows[q]["extrapolated"]), ext, places=5)
+                self.assertEqual(rows[q]["asymptotic_range"], "yes")
+                phi = [float(rows[q][n]) for n in names]
+                self.assertAlmostEqual(float(rows[q]["range_uncertainty_pct"]),
+                                       100 * 0.5 * (max(phi) - min(phi)) / phi[2], places=3)
+            # a shape solve that did not converge: its quantities leave the asymptotic range,
+            # the coupled ones keep it
+            runs[1] = self.make_run(root, "medium-unsettled", self.CELLS[1], shape_converged=0)
+            subprocess.run([sys.executable, script, "--steady", "--model", "m", "--out", out] + runs,
+                           check=True, capture_output=True)
+            rows = {r["quantity"]: r for r in csv.DictReader(open(out))}
+            self.assertEqual(rows["shape_lift_N@t=0"]["asymptotic_range"], "no")
+            self.assertEqual(rows["lift_N@t=0"]["asymptotic_range"], "yes")
+            # one level without a shape check: no shape quantities
+            runs[1] = self.make_run(root, "medium-plain", self.CELLS[1])
+            subprocess.run([sys.executable, script, "--steady", "--model", "m", "--out", out] + runs,
+                           check=True, capture_output=True)
+            self.assertEqual(len(list(csv.DictReader(open(out)))), 4)
 
     def test_second_order_sequence_and_merge(self):
         import csv
