@@ -36,10 +36,11 @@
 # level: the coupled and the converged lift and drag and their change, the fluid iteration
 # error the accepted levels carry (second order: coarse about 700 iterations, medium 900, fine
 # about an hour on 2 cores); with three levels both gci.csv files get the rows
-# shape_lift_N@t=0 and shape_drag_N@t=0 (their order and GCI). With HYDROFOIL_REUSE=1 a level's finished shape run is kept, so
-# the check can follow a finished study, and a shape run stopped from outside (a session's end)
-# goes on from its latest restart point (shapeCheck.sh --resume; one stopped before its first
-# restart point is refused by rigid.sh: remove its shape-baseline folder).
+# shape_lift_N@t=0 and shape_drag_N@t=0 (their order and GCI). With HYDROFOIL_REUSE=1 a level's
+# finished shape run is kept, so the check can follow a finished study, and a shape run stopped
+# from outside (a session's end) goes on from its latest restart point (shapeCheck.sh --resume;
+# one stopped before its first restart point is refused by rigid.sh: remove its shape-baseline
+# folder).
 set -euo pipefail
 : "${FSI_VERIFY_DIR:?run through scripts/verify hydrofoil-cgrid}"
 root=${FSI_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}

@@ -36,7 +36,7 @@ class GciTest(unittest.TestCase):
 
     def test_range_uncertainty(self):
         # half the range over |fine|: (1.2 - 1.0) / 2 / 1.1 for the oscillatory sequence, and
-        # the same rule for any other (here monotone, range 0.9 + 0.3 = 1.2 about phi1 = 2.3)
+        # the same rule for any other (here monotone: 6.8, 3.2, 2.3, range 4.5 about phi1 2.3)
         r = gci([4, 2, 1], [1.0, 1.2, 1.1])
         self.assertEqual(r["convergence"], "oscillatory")
         self.assertAlmostEqual(r["range_uncertainty_pct"], 100 * 0.1 / 1.1, places=10)
