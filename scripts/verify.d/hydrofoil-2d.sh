@@ -8,7 +8,8 @@
 # extrapolated,gci_fine_pct, then convergence,asymptotic_ratio,rel_diff_fine,asymptotic_range:
 # yes when the three levels are settled (below) and converge monotonically with an observed
 # order between 1 and 3, otherwise the order and GCI are no error bound; settled: yes when
-# all three levels are).
+# all three levels are; range_uncertainty_pct: half the three levels' range over the finest,
+# scripts/gci.py, the estimate for oscillatory convergence).
 # error_vs_runtime.csv: the standard columns; reference = the extrapolated value where the
 # three finest levels are in the asymptotic range, else the finest level (its rows then have
 # rel_error 0); extra columns cpu_s, iterations, converged, model, te.
@@ -144,7 +145,8 @@ for model in sorted({r["flow"] for r in rows}):
                             "%.4g" % res["observed_order"], "%.8g" % res["extrapolated"],
                             "%.4g" % res["gci_fine_pct"], res["convergence"],
                             "%.4g" % res["asymptotic_ratio"], "%.4g" % res["rel_diff_fine"],
-                            "yes" if asymptotic else "no", "yes" if allSettled else "no"])
+                            "yes" if asymptotic else "no", "yes" if allSettled else "no",
+                            "%.4g" % res["range_uncertainty_pct"]])
             if i == len(rs) - 3 and asymptotic:
                 ref = res["extrapolated"]
         if ref is None:
@@ -156,7 +158,7 @@ for model in sorted({r["flow"] for r in rows}):
                         r["converged"], model, r["te"]])
 with open(os.path.join(outDir, "gci.csv"), "w") as f:
     f.write("quantity,model,levels,observed_order,extrapolated,gci_fine_pct,convergence,"
-            "asymptotic_ratio,rel_diff_fine,asymptotic_range,settled\n")
+            "asymptotic_ratio,rel_diff_fine,asymptotic_range,settled,range_uncertainty_pct\n")
     for g in gciRows:
         f.write(",".join(g) + "\n")
 with open(os.path.join(outDir, "error_vs_runtime.csv"), "w") as f:
@@ -167,5 +169,5 @@ with open(os.path.join(outDir, "error_vs_runtime.csv"), "w") as f:
 for g in gciRows:
     print("hydrofoil-2d: %s %s levels %s: order %s, extrapolated %s, GCI_fine %s %% (%s, "
           "asymptotic ratio %s, in the asymptotic range (order 1-3): %s, levels settled: %s)"
-          % tuple(g[:8] + g[9:]))
+          % tuple(g[:8] + g[9:11]))
 PY
