@@ -76,7 +76,6 @@ fi
 export HYDROFOIL_FLUID_MESH=cgrid HYDROFOIL_FLOW=turbulent HYDROFOIL_SCHEME=$scheme
 export HYDROFOIL_ALGORITHM=$algorithm HYDROFOIL_ROOT_WALL=$rootWall
 export HYDROFOIL_INIT_FROM=$rigidRuns/turbulent-$scheme-$algorithm$suffix-LEVEL/rigid/case
-export HYDROFOIL_GCI_MODEL=$model HYDROFOIL_GCI_OUT=$FSI_VERIFY_DIR/gci.csv
 study=$FSI_VERIFY_DIR
 mkdir -p "$study/$model"
 rm -f "$study/$model/richardson.csv" # written by hydrofoil.sh only with three levels
@@ -88,10 +87,20 @@ for f in levels.csv error_vs_runtime.csv richardson.csv; do
   [ -f "$study/$model/$f" ] || continue
   "$FSI_PYTHON" "$root/scripts/model_csv.py" tag "$study/$model/$f" "$study/$f" "$model"
 done
-if [ $# = 3 ]; then
+# writeGci [--table]: with three levels, the model's order and GCI rows (history_gci.py --steady;
+# with a shape check on every level also shape_lift_N@t=0 and shape_drag_N@t=0) into this
+# folder's gci.csv and verification/hydrofoil/gci.csv; written after the coupled levels (a
+# failed shape check keeps them) and again after the shape check
+levelRuns=()
+for level in "$@"; do levelRuns+=("$runs/run-$level"); done
+writeGci() {
+  [ ${#levelRuns[@]} = 3 ] || return 0
+  "$FSI_PYTHON" "$root/scripts/history_gci.py" --steady --model "$model" --out "$study/gci.csv" \
+      ${1+"$1"} "${levelRuns[@]}"
   "$FSI_PYTHON" "$root/scripts/history_gci.py" --steady --model "$model" \
-      --out "$root/verification/hydrofoil/gci.csv" "$runs/run-$1" "$runs/run-$2" "$runs/run-$3" > /dev/null
-fi
+      --out "$root/verification/hydrofoil/gci.csv" "${levelRuns[@]}"
+}
+writeGci --table
 
 # the accepted shapes solved on to convergence (HYDROFOIL_SHAPE_CHECK=1)
 [ "$shapeCheck" = 1 ] || exit 0
@@ -129,11 +138,4 @@ for arg in sys.argv[4:]:
 columns = ["model", "level"] + [c for c in rows[0] if c not in ("model", "level")]
 write_model_rows(out, columns, model, rows)
 PY
-# with three levels the converged lift and drag at the accepted shapes get their own order and
-# GCI (history_gci.py --steady adds shape_lift_N@t=0, shape_drag_N@t=0 when every level has one)
-if [ $# = 3 ]; then
-  for out in "$study/gci.csv" "$root/verification/hydrofoil/gci.csv"; do
-    "$FSI_PYTHON" "$root/scripts/history_gci.py" --steady --model "$model" --out "$out" \
-        "$runs/run-$1" "$runs/run-$2" "$runs/run-$3" > /dev/null
-  done
-fi
+writeGci   # now with the shape checks' rows
