@@ -78,6 +78,9 @@ def gci(h, phi, fs=1.25, maxIter=200):
 
 
 def main(argv):
+    if argv and argv[0] in ("-h", "--help"):
+        print(__doc__.strip())
+        return
     if len(argv) != 3:
         sys.exit("usage: gci.py H3,PHI3 H2,PHI2 H1,PHI1 (coarsest first)")
     pairs = [tuple(float(v) for v in a.split(",")) for a in argv]

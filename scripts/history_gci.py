@@ -170,7 +170,10 @@ def main(argv):
     model, out, table, rigid, steady, folders = None, None, False, False, False, []
     i = 0
     while i < len(argv):
-        if argv[i] == "--rigid":
+        if argv[i] in ("-h", "--help"):
+            print(__doc__.strip())
+            sys.exit(0)
+        elif argv[i] == "--rigid":
             rigid, i = True, i + 1
         elif argv[i] == "--steady":
             steady, i = True, i + 1

@@ -26,6 +26,9 @@ def fail(message):
 
 
 def main(argv):
+    if len(argv) > 1 and argv[1] in ("-h", "--help"):
+        print(__doc__.strip())
+        return
     if len(argv) < 6 or (len(argv) > 6 and argv[6] != "--extra"):
         sys.exit(__doc__.strip().splitlines()[2])
     levelsCsv, gciCsv, out, cores, model = argv[1:6]

@@ -16,6 +16,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 
 def main():
+    if len(sys.argv) > 1 and sys.argv[1] in ("-h", "--help"):
+        print(__doc__.strip())
+        return
     if len(sys.argv) < 3:
         sys.exit("usage: plot_error_vs_runtime.py CSV PNG [TITLE]")
     src, png = sys.argv[1], sys.argv[2]

@@ -28,7 +28,7 @@ here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 preset=coarse tc=0.12 cli=0.5 meanline=a08 out="" layers="" np=1 doFluid=1 doSolid=1 curved=0
 fluidMesh=snappy te=sharp
 
-usage() { sed -n '3,9p' "$0" | sed 's/^# \{0,1\}//'; }
+usage() { sed -n '2,/^[^#]/{/SPDX-License-Identifier/d;s/^# \{0,1\}//p}' "$0"; }
 die() { echo "error: mesh.sh: $*" >&2; exit 1; }
 
 while [ $# -gt 0 ]; do

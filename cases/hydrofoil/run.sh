@@ -135,6 +135,7 @@
 # (solid-app outputs: coupling.csv, history.csv, interface/, solid_*.vtu + solid.pvd), summary.csv and the
 # PNG plots; the fluid fields of accepted levels are in fluid-*/ (OpenFOAM time folders).
 set -euo pipefail
+case "${1:-}" in -h|--help) sed -n '3,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;; esac
 : "${FSI_ROOT:?run through ./scripts/run cases/hydrofoil (FSI_ROOT unset)}"
 source "$FSI_ROOT/scripts/env.sh"
 

@@ -113,6 +113,9 @@ def main(case, outCsv):
 
 
 if __name__ == "__main__":
+    if len(sys.argv) == 2 and sys.argv[1] in ("-h", "--help"):
+        print(__doc__.strip())
+        sys.exit(0)
     if len(sys.argv) != 3:
         sys.exit("usage: blstate.py CASE OUT_CSV")
     main(*sys.argv[1:])

@@ -21,6 +21,7 @@
 # effect in DEST/fluidModel (`flow F`, `scheme S`, `algorithm simple|simplec`, `root_wall W`):
 # rigid.sh --shape-from solves a coupled case's shape on with that model.
 set -euo pipefail
+case "${1:-}" in -h|--help) sed -n '2,/^[^#]/{/SPDX-License-Identifier/d;s/^# \{0,1\}//p}' "$0"; exit 0 ;; esac
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 case_dir="$(cd "$here/.." && pwd)"
 die() { echo "error: fluidCase.sh: $*" >&2; exit 2; }

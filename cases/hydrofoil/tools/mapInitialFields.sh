@@ -15,6 +15,7 @@
 # be reconstructed (rigid.sh and run2d.sh do so). Writes DEST_CASE/log.mapFields; exit 2 with a
 # one-line error naming the folder when there is nothing to map or mapFields fails.
 set -euo pipefail
+case "${1:-}" in -h|--help) sed -n '2,/^[^#]/{/SPDX-License-Identifier/d;s/^# \{0,1\}//p}' "$0"; exit 0 ;; esac
 die() { echo "error: mapInitialFields.sh: $*" >&2; exit 2; }
 [ $# = 2 ] || die "usage: mapInitialFields.sh DEST_CASE SOURCE_CASE (or --check SOURCE_CASE)"
 dest=$1

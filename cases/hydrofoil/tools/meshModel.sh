@@ -16,6 +16,7 @@
 # a new one. run.sh takes its defaults from it; scripts/bench-fsi sets up its rigid solve with the
 # same model.
 set -euo pipefail
+case "${1:-}" in -h|--help) sed -n '2,/^[^#]/{/SPDX-License-Identifier/d;s/^# \{0,1\}//p}' "$0"; exit 0 ;; esac
 die() { echo "error: meshModel.sh: $*" >&2; exit 2; }
 case $# in
   1) [ -f "$1" ] || die "no mesh summary $1 (a mesh.sh output folder's mesh-summary.txt)"

@@ -15,6 +15,7 @@
 # -fields '(pointDisplacement)'` and `foamFormatConvert -time TIME` with writeFormat ascii.)
 # A mesh whose dynamicMeshDict selects fsiInverseDistance needs libfsiMeshMotion.so: taken from the build next to fluid-app on PATH (or FSI_BUILD_DIR).
 set -euo pipefail
+case "${1:-}" in -h|--help) sed -n '2,/^[^#]/{/SPDX-License-Identifier/d;s/^# \{0,1\}//p}' "$0"; exit 0 ;; esac
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 mesh="" out="" twist=-4 deflection=0.003 bending=beam openingAngle="" from=""
 while [ $# -gt 0 ]; do

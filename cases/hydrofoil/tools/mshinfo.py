@@ -79,6 +79,9 @@ def fmt(counter):
 
 
 def main(argv):
+    if argv and argv[0] in ("-h", "--help"):
+        print(__doc__.strip())
+        return 0
     require = []
     if argv and argv[0] == "--require":
         require = argv[1].split(",")

@@ -11,6 +11,9 @@ import sys
 
 
 def main(argv):
+    if argv and argv[0] in ("-h", "--help"):
+        print(__doc__.strip())
+        return
     if len(argv) < 2:
         sys.exit(__doc__)
     path, pairs = argv[0], [a.split(":", 1) for a in argv[1:]]

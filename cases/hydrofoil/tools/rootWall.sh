@@ -18,6 +18,7 @@
 # functions) does not resolve anyway; the paper's tunnel is no-slip (`--root-wall wall`, the
 # default of the scripts that take the option).
 set -euo pipefail
+case "${1:-}" in -h|--help) sed -n '2,/^[^#]/{/SPDX-License-Identifier/d;s/^# \{0,1\}//p}' "$0"; exit 0 ;; esac
 die() { echo "error: rootWall.sh: $*" >&2; exit 2; }
 [ $# = 1 ] || die "usage: rootWall.sh CASE"
 c=$1

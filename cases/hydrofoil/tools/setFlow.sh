@@ -36,6 +36,7 @@
 # `setFlow.sh --check-only [options]` only validates the options (exit 2 with a one-line error):
 # the scripts that pass them on call it before they write anything.
 set -euo pipefail
+case "${1:-}" in -h|--help) sed -n '2,/^[^#]/{/SPDX-License-Identifier/d;s/^# \{0,1\}//p}' "$0"; exit 0 ;; esac
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 die() { echo "error: setFlow.sh: $*" >&2; exit 2; }
 [ $# -ge 1 ] || die "usage: setFlow.sh CASE [--flow laminar|transition|turbulent] [--scheme upwind|linearUpwind]"

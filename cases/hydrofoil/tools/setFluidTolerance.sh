@@ -12,6 +12,7 @@
 #                                                         only check that every YAML has both lines
 # Exit 2 with a one-line error naming the file and the missing line; YAML is not changed then.
 set -euo pipefail
+case "${1:-}" in -h|--help) sed -n '2,/^[^#]/{/SPDX-License-Identifier/d;s/^# \{0,1\}//p}' "$0"; exit 0 ;; esac
 die() { echo "error: setFluidTolerance.sh: $*" >&2; exit 2; }
 finalLine='^    final: {force_tolerance: '
 maxLine='^    max_force_tolerance: '

@@ -32,6 +32,7 @@
 # band, root_moment_z_Nm, cpu_s, wall_s. Exit 2 on bad options (one line; rigid.sh's own too),
 # non-zero when the solve fails.
 set -euo pipefail
+case "${1:-}" in -h|--help) sed -n '2,/^[^#]/{/SPDX-License-Identifier/d;s/^# \{0,1\}//p}' "$0"; exit 0 ;; esac
 here=$(cd "$(dirname "$0")/.." && pwd)
 die() { echo "error: shapeCheck.sh: $*" >&2; exit 2; }
 run="" material=baseline out="" resume=0

@@ -45,7 +45,10 @@ def fluid_forces(logs):
 
 def main():
     args = sys.argv[1:]
-    if not args or args[0] in ("-h", "--help"):
+    if args and args[0] in ("-h", "--help"):
+        print(__doc__.strip())
+        return
+    if not args:
         sys.exit(__doc__)
     run = args[0]
     depth, wall = 0.01, None
