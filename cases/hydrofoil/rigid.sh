@@ -125,17 +125,19 @@ ranksOf() {
 # this solve's where no option gives it; an option that contradicts it is refused (WHAT names
 # CASE). Status 1 when CASE records none.
 takeModel() {
-    local src=$1 what=$2 key value var
-    [ -f "$src/fluidModel" ] || return 1
-    while read -r key value; do
-        case "$key" in flow|scheme|algorithm) var=$key ;; root_wall) var=rootWall ;; *) continue ;; esac
+    local src=$1 what=$2 options option value var status=0
+    options=$("$here/tools/fluidCase.sh" --model-of "$src") || status=$?
+    [ "$status" -le 1 ] || exit "$status"   # a malformed record: fluidCase.sh said which line
+    [ "$status" = 0 ] || return 1
+    while read -r option value; do
+        case "$option" in --flow|--scheme|--algorithm) var=${option#--} ;; --root-wall) var=rootWall ;; *) continue ;; esac
         if [[ "$given" == *" $var "* ]]; then
             [ "${!var}" = "$value" ] ||
-                die "$what was solved with --${key/_/-} $value (its fluidModel): leave --${key/_/-} out or give $value"
+                die "$what was solved with $option $value (its fluidModel): leave $option out or give $value"
         else
             printf -v "$var" '%s' "$value"
         fi
-    done < "$src/fluidModel"
+    done <<< "$options"
 }
 [ "$resume" = 1 ] || [ -z "$initFrom" ] || { [ -f "$initFrom/rigid.csv" ] && [ -d "$initFrom/case" ]; } ||
     die "--init-from '$initFrom' is not a finished rigid.sh run (no rigid.csv / case)"

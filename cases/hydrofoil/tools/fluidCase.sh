@@ -20,11 +20,31 @@
 # same settings; options other than --init-from go to tools/setFlow.sh. Records the model in
 # effect in DEST/fluidModel (`flow F`, `scheme S`, `algorithm simple|simplec`, `root_wall W`):
 # rigid.sh --shape-from solves a coupled case's shape on with that model.
+#
+#   cases/hydrofoil/tools/fluidCase.sh --model-of CASE
+#
+# The one reader of that record: prints CASE's model as this script's options, one `--option
+# value` per line (--flow, --scheme, --algorithm, --root-wall); status 1 when CASE has no
+# fluidModel (a case made before 2026-12-07); a line it does not know is an error naming the
+# file and the line. Used by rigid.sh (--shape-from, --resume) and scripts/bench-fsi.
 set -euo pipefail
 case "${1:-}" in -h|--help) sed -n '2,/^[^#]/{/SPDX-License-Identifier/d;s/^# \{0,1\}//p}' "$0"; exit 0 ;; esac
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 case_dir="$(cd "$here/.." && pwd)"
 die() { echo "error: fluidCase.sh: $*" >&2; exit 2; }
+if [ "${1:-}" = --model-of ]; then
+  [ $# = 2 ] || die "usage: fluidCase.sh --model-of CASE"
+  [ -f "$2/fluidModel" ] || exit 1
+  while read -r key value; do
+    case "$key" in
+      ""|"#"*) ;;
+      flow|scheme|algorithm|root_wall) [ -n "$value" ] || die "$2/fluidModel: '$key' has no value"
+                                       echo "--${key/_/-} $value" ;;
+      *) die "$2/fluidModel: unknown key '$key' (flow, scheme, algorithm, root_wall; remake the case with tools/fluidCase.sh)" ;;
+    esac
+  done < "$2/fluidModel"
+  exit 0
+fi
 # --check-only [--simple-acceleration A]: validates A only (exit 2 with a one-line error), for the
 # scripts that pass it on (run.sh, scripts/bench-fsi) before they write anything.
 checkOnly=0

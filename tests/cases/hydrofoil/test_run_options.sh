@@ -22,6 +22,7 @@
 # a stopped run), and rigid.sh --shape-from an option that contradicts the coupled case's recorded
 # flow model (fluidModel), or, without one, a missing --flow / --scheme; --resume one that
 # contradicts its own case's; tools/shapeCheck.sh a --resume without a stopped shape solve.
+# tools/fluidCase.sh --model-of reads a case's fluidModel (a malformed one refused).
 # And mesh.sh refuses
 # --preset finer unless --fluid-mesh cgrid --fluid-only.
 set -uo pipefail
@@ -219,6 +220,26 @@ fakeResume=$work/fake-resume
 rm -rf "$fakeResume"; mkdir -p "$fakeResume/case"; cp "$fakeShape/fluidModel" "$fakeResume/case/"
 refusedBefore 2 "--resume: $fakeResume/case was solved with --flow turbulent" rigid.sh --mesh "$fakeMesh" --resume --flow laminar --out "$fakeResume"
 refusedBefore 2 "has no written iteration" rigid.sh --mesh "$fakeMesh" --resume --out "$fakeResume"   # the model passes
+# tools/fluidCase.sh --model-of, the one reader of the record (rigid.sh, scripts/bench-fsi): the
+# recorded model as options, status 1 without a record, a line it does not know refused in one
+# line naming the file (and rigid.sh stops with it)
+want=$'--flow turbulent\n--scheme linearUpwind\n--algorithm simplec\n--root-wall slip'
+got=$("$FSI_ROOT/cases/hydrofoil/tools/fluidCase.sh" --model-of "$fakeShape" 2> "$work/study.err") || got="exit $?"
+if [ "$got" = "$want" ] && [ ! -s "$work/study.err" ]; then
+    echo "ok: fluidCase.sh --model-of: the recorded model as four options"
+else
+    echo "FAIL: fluidCase.sh --model-of printed '$got', expected '$want'"; fail=1
+fi
+rc=0; "$FSI_ROOT/cases/hydrofoil/tools/fluidCase.sh" --model-of "$fakeMesh" > "$work/study.out" 2>&1 || rc=$?
+if [ "$rc" = 1 ] && [ ! -s "$work/study.out" ]; then
+    echo "ok: fluidCase.sh --model-of a case without fluidModel: status 1, silent"
+else
+    echo "FAIL: fluidCase.sh --model-of a case without fluidModel: exit $rc, $(cat "$work/study.out")"; fail=1
+fi
+cp "$fakeShape/fluidModel" "$work/fluidModel.good"
+echo "turbulence kOmegaSST" >> "$fakeShape/fluidModel"
+refusedBefore 2 "$fakeShape/fluidModel: unknown key 'turbulence'" rigid.sh --mesh "$fakeMesh" --np 2 --shape-from "$fakeShape"
+cp "$work/fluidModel.good" "$fakeShape/fluidModel"
 # ... and it is what rigid.sh validates (a recorded value it does not know is refused)
 sed -i 's/^scheme .*/scheme quick/' "$fakeShape/fluidModel"
 refusedBefore 2 "--scheme 'quick' unknown" rigid.sh --mesh "$fakeMesh" --np 2 --shape-from "$fakeShape"
