@@ -18,7 +18,15 @@
 # extrapolated value in the asymptotic range, else the finest level's).
 # Cost on 2 cores: coarse ~3 min, medium ~6 min, fine ~21 min.
 # Environment:
-#   H3P_ANGLE      pitch [deg], nose-up positive (default -2: about the coupled state's tip twist)
+#   H3P_ANGLE      pitch [deg], nose-up positive (default -2: about the coupled state's tip twist);
+#                  with H3P_SHAPE=twist the tip's twist
+#   H3P_SHAPE      pitch (default: the whole foil turned) | twist: the coupled state's kind of
+#                  shape, fixed: each section at z > 0 turned about the spanwise line through the
+#                  root quarter chord by H3P_ANGLE z / 0.1 m (fluid-app -prescribed, type twist),
+#                  plus a bending H3P_TIP_DEFLECTION (z / 0.1 m)^2 in -y (the lift's direction);
+#                  the loads of one deformed shape on every mesh, without the structure
+#   H3P_TIP_DEFLECTION  [m] the twist shape's tip deflection (default 0; the second-order coupled
+#                  t = 0 state: about 4.6e-3 m at -2.1 deg, verification/hydrofoil-cgrid)
 #   H3P_RUNS       run folders (default $FSI_VERIFY_DIR/runs, not tracked)
 #   H3P_REUSE=1    keep a level whose RUN/case/log.pitch finished instead of redoing it
 #   H3P_BAND, H3P_BAND_MEAN  the solve's bandTolerance / bandMeanTolerance (fsiDict; default: the
@@ -30,13 +38,15 @@
 #                  (as hydrofoil-cgrid: upwind or linearUpwind, wall or slip; default the
 #                  first-order no-slip study): each level starts from that model's converged flow
 #                  and keeps its settings (scheme, relaxation, root wall); run folders and the
-#                  model label carry them (turbulent-SCHEME-ALGORITHM-cgrid[-slip]-pitchANGLE)
+#                  model label carry them (turbulent-SCHEME-ALGORITHM-cgrid[-slip]-pitchANGLE, or
+#                  -twistANGLE[-bendDEFLECTION] with H3P_SHAPE=twist)
 set -euo pipefail
 : "${FSI_VERIFY_DIR:?run through scripts/verify hydrofoil-pitch}"
 root=${FSI_ROOT:-$(cd "$(dirname "$0")/../.." && pwd)}
 export PATH=${FSI_BUILD_DIR:-$root/build}/bin:$PATH
 export LD_LIBRARY_PATH=${FSI_BUILD_DIR:-$root/build}/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
 angle=${H3P_ANGLE:--2}
+shape=${H3P_SHAPE:-pitch} tipDeflection=${H3P_TIP_DEFLECTION:-0}
 runs=${H3P_RUNS:-$FSI_VERIFY_DIR/runs}
 rigidRuns=${H3D_RUNS:-$root/verification/hydrofoil-3d-rigid/runs}
 algorithm=${H3D_ALGORITHM:-simplec} scheme=${H3D_SCHEME:-upwind} rootWall=${H3D_ROOT_WALL:-wall}
@@ -50,6 +60,13 @@ np=2
 die() { echo "error: hydrofoil-pitch: $*" >&2; exit 2; }
 awk -v a="$angle" 'BEGIN { exit !(a ~ /^[-+]?[0-9]*\.?[0-9]+([eE][-+]?[0-9]+)?$/ && a != 0 && a >= -15 && a <= 15) }' ||
   die "H3P_ANGLE='$angle' must be a pitch in degrees, non-zero, within -15..15 (e.g. -2)"
+case "$shape" in pitch|twist) ;; *) die "H3P_SHAPE='$shape' must be pitch (the whole foil turned) or twist (linear from the root)" ;; esac
+awk -v d="$tipDeflection" 'BEGIN { exit !(d ~ /^[0-9]*\.?[0-9]+([eE][-+]?[0-9]+)?$/ && d <= 0.03) }' ||
+  die "H3P_TIP_DEFLECTION='$tipDeflection' must be a tip deflection in m, 0..0.03 (e.g. 4.6e-3)"
+[ "$shape" = twist ] || awk -v d="$tipDeflection" 'BEGIN { exit !(d == 0) }' ||
+  die "H3P_TIP_DEFLECTION needs H3P_SHAPE=twist (a pitch turns the foil as a whole)"
+label=$shape$angle
+awk -v d="$tipDeflection" 'BEGIN { exit !(d == 0) }' || label=$label-bend$tipDeflection
 case "$algorithm" in simple|simplec) ;; *) die "H3D_ALGORITHM='$algorithm' must be simple or simplec" ;; esac
 case "$scheme" in upwind|linearUpwind) ;; *) die "H3D_SCHEME='$scheme' must be upwind or linearUpwind" ;; esac
 case "$rootWall" in wall) suffix="" ;; slip) suffix=-slip ;; *) die "H3D_ROOT_WALL='$rootWall' must be wall or slip" ;; esac
@@ -65,7 +82,7 @@ mkdir -p "$runs"
 folders=()
 for level in $levels; do
   src=$rigidRuns/turbulent-$scheme-$algorithm$suffix-$level
-  r=$runs/pitch$angle-$scheme-$algorithm$suffix-$level c=$r/case
+  r=$runs/$label-$scheme-$algorithm$suffix-$level c=$r/case
   if [ "$reuse" = 1 ] && grep -q '^End' "$c/log.pitch" 2> /dev/null; then
     echo "hydrofoil-pitch: reusing $r"
   else
@@ -81,8 +98,14 @@ for level in $levels; do
       "$c/system/fsiDict" > /dev/null
     [ -z "$band" ] || foamDictionary -entry coupled/bandTolerance -set "$band" "$c/system/fsiDict" > /dev/null
     [ -z "$bandMean" ] || foamDictionary -entry coupled/bandMeanTolerance -set "$bandMean" "$c/system/fsiDict" > /dev/null
-    foamDictionary -entry prescribed -set "{ type rotation; origin (0.3685 0 0); axis (0 0 1);
-      angle $angle; steps 1; solveFlow true; }" "$c/system/fsiDict" > /dev/null
+    if [ "$shape" = pitch ]; then
+      motion="type rotation; origin (0.3685 0 0); axis (0 0 1); angle $angle;"
+    else   # twist linear from the root (z = 0) to the tip (0.1 m), bending quadratic in -y
+      motion="type twist; origin (0.3685 0 0); beamAxis (0 0 1); start 0; length 0.1;
+      angle $angle; direction (0 -1 0); amplitude $tipDeflection;"
+    fi
+    foamDictionary -entry prescribed -set "{ $motion steps 1; solveFlow true; }" \
+      "$c/system/fsiDict" > /dev/null
     foamDictionary -entry endTime -set 100000 "$c/system/controlDict" > /dev/null
     (cd "$c" && /usr/bin/time -f '%e %U %S' -o time.pitch \
         mpirun --oversubscribe -np "$np" fluid-app -prescribed -parallel > log.pitch 2>&1) ||
@@ -125,7 +148,7 @@ PY
   folders+=("$r")
 done
 
-model=turbulent-$scheme-$algorithm-cgrid$suffix-pitch$angle
+model=turbulent-$scheme-$algorithm-cgrid$suffix-$label
 "$FSI_PYTHON" "$root/scripts/history_gci.py" --rigid --model "$model" --out "$FSI_VERIFY_DIR/gci.csv" \
     --table "${folders[@]}"
 "$FSI_PYTHON" - "$FSI_VERIFY_DIR" "$model" "$root/scripts" "${folders[@]}" <<'PY'
