@@ -22,7 +22,8 @@
 # a stopped run), and rigid.sh --shape-from an option that contradicts the coupled case's recorded
 # flow model (fluidModel), or, without one, a missing --flow / --scheme; --resume one that
 # contradicts its own case's; tools/shapeCheck.sh a --resume without a stopped shape solve.
-# tools/fluidCase.sh --model-of reads a case's fluidModel (a malformed one refused).
+# tools/fluidCase.sh --model-of reads a case's fluidModel (a malformed one refused). And
+# scripts/bench-fsi refuses an unknown --rigid-stop.
 # And mesh.sh refuses
 # --preset finer unless --fluid-mesh cgrid --fluid-only.
 set -uo pipefail
@@ -263,5 +264,15 @@ if "$FSI_ROOT/cases/hydrofoil/rigid.sh" --check-only --flow turbulent --scheme l
     echo "ok: rigid.sh --check-only with valid options: exit 0"
 else
     echo "FAIL: rigid.sh --check-only with valid options:"; cat "$work/study.err"; fail=1
+fi
+# scripts/bench-fsi --rigid-stop: a value it does not know is refused in one line, before the
+# bench makes its work folder
+rc=0
+"$FSI_ROOT/scripts/bench-fsi" --run --rigid-stop residuals --out "$work/bench-out" > "$work/study.out" 2> "$work/study.err" || rc=$?
+if [ "$rc" = 2 ] && [ "$(wc -l < "$work/study.err")" = 1 ] && grep -q -- "--rigid-stop" "$work/study.err" &&
+        [ ! -e "$work/bench-out" ]; then
+    echo "ok: bench-fsi --rigid-stop residuals -> $(cat "$work/study.err")"
+else
+    echo "FAIL: bench-fsi --rigid-stop residuals: exit $rc:"; cat "$work/study.err"; fail=1
 fi
 exit $fail
