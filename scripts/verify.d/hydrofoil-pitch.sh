@@ -63,10 +63,11 @@ awk -v a="$angle" 'BEGIN { exit !(a ~ /^[-+]?[0-9]*\.?[0-9]+([eE][-+]?[0-9]+)?$/
 case "$shape" in pitch|twist) ;; *) die "H3P_SHAPE='$shape' must be pitch (the whole foil turned) or twist (linear from the root)" ;; esac
 awk -v d="$tipDeflection" 'BEGIN { exit !(d ~ /^[0-9]*\.?[0-9]+([eE][-+]?[0-9]+)?$/ && d <= 0.03) }' ||
   die "H3P_TIP_DEFLECTION='$tipDeflection' must be a tip deflection in m, 0..0.03 (e.g. 4.6e-3)"
-[ "$shape" = twist ] || awk -v d="$tipDeflection" 'BEGIN { exit !(d == 0) }' ||
+bent=0; awk -v d="$tipDeflection" 'BEGIN { exit !(d > 0) }' && bent=1
+[ "$bent" = 0 ] || [ "$shape" = twist ] ||
   die "H3P_TIP_DEFLECTION needs H3P_SHAPE=twist (a pitch turns the foil as a whole)"
 label=$shape$angle
-awk -v d="$tipDeflection" 'BEGIN { exit !(d == 0) }' || label=$label-bend$tipDeflection
+[ "$bent" = 0 ] || label=$label-bend$tipDeflection
 case "$algorithm" in simple|simplec) ;; *) die "H3D_ALGORITHM='$algorithm' must be simple or simplec" ;; esac
 case "$scheme" in upwind|linearUpwind) ;; *) die "H3D_SCHEME='$scheme' must be upwind or linearUpwind" ;; esac
 case "$rootWall" in wall) suffix="" ;; slip) suffix=-slip ;; *) die "H3D_ROOT_WALL='$rootWall' must be wall or slip" ;; esac

@@ -46,8 +46,9 @@ for m in "${meshes[@]}"; do
     m=$(cd "$m" && pwd)
     # the latest entries of mesh-summary.txt (mesh.sh appends to it)
     preset=$(sed -n 's/.*preset=\([a-z]*\).*/\1/p' "$m/mesh-summary.txt" | tail -n 1)
+    preset=${preset:-$(basename "$m")}
     for el in tet10 hex20; do
-        name=${preset:-$(basename "$m")}-$el
+        name=$preset-$el
         type=displacement; [ "$el" = tet10 ] || type=projected-dilatation
         # baseline.yaml's solid block, with this mesh, element, load and output folder
         sed -n '/^solid:/,/^coupling:/p' "$here/solid/baseline.yaml" | sed '$d' |
