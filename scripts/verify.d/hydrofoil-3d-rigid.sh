@@ -9,7 +9,8 @@
 # chord [N m]. scripts/history_gci.py --rigid gives the observed order, the Richardson value and
 # GCI_fine (Celik et al. 2008) -> gci.csv (quantity,model,levels,observed_order,extrapolated,
 # gci_fine_pct, then convergence, the three values, the relative differences to the finest,
-# asymptotic_ratio, asymptotic_range).
+# asymptotic_ratio, asymptotic_range); the same rows go into verification/hydrofoil/gci.csv
+# (the 3-D foil's file, beside the coupled t = 0 study's rows) as the model "rigid-MODEL".
 # error_vs_runtime.csv: the standard columns (size = fluid cells, cores = MPI ranks, wall_s =
 # the rigid solve); reference = the extrapolated value where the three levels are in the
 # asymptotic range, else the finest level's value (its rows then have rel_error 0); extra
@@ -124,6 +125,8 @@ done
 
 "$FSI_PYTHON" "$root/scripts/history_gci.py" --rigid --model "$model" \
     --out "$FSI_VERIFY_DIR/gci.csv" --table "${folders[@]}"
+"$FSI_PYTHON" "$root/scripts/history_gci.py" --rigid --model "rigid-$model" \
+    --out "$root/verification/hydrofoil/gci.csv" "${folders[@]}"
 
 "$FSI_PYTHON" - "$lines" "$raw" "$model" "$root/scripts" <<'PY'
 import os, sys
