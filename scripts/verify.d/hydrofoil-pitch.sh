@@ -34,6 +34,11 @@
 #                  second order: the turned medium flow kept a +-2e-4 |F| swing and stopped in
 #                  the mean at 1e-4 after 2 500 iterations; the fine one swung by +-1.4 % and
 #                  did not stop with 5e-4 / 2e-4 in 1 463 (stopped by hand); first order: 1e-3
+#   H3P_MAX_ITERATIONS  cap on each level's SIMPLE iterations (default: the rigid flow's fsiDict
+#                  rigid/maxIterations, 3 000; at least 200, the band rule's two blocks). A level
+#                  that reaches it unconverged gets converged 0 in levels.csv, and gci.csv then
+#                  says asymptotic_range no. The second-order fine level runs at about 1.8 s per
+#                  iteration on 2 cores: 3 000 iterations are 1.5 h
 #   H3D_RUNS, H3D_ALGORITHM, H3D_SCHEME, H3D_ROOT_WALL  the rigid study's run folders and model
 #                  (as hydrofoil-cgrid: upwind or linearUpwind, wall or slip; default the
 #                  first-order no-slip study): each level starts from that model's converged flow
@@ -52,6 +57,9 @@ rigidRuns=${H3D_RUNS:-$root/verification/hydrofoil-3d-rigid/runs}
 algorithm=${H3D_ALGORITHM:-simplec} scheme=${H3D_SCHEME:-upwind} rootWall=${H3D_ROOT_WALL:-wall}
 reuse=${H3P_REUSE:-0}
 band=${H3P_BAND:-} bandMean=${H3P_BAND_MEAN:-}
+maxIterations=${H3P_MAX_ITERATIONS:-}
+[ -z "$maxIterations" ] || { [[ "$maxIterations" =~ ^[1-9][0-9]{0,5}$ ]] && [ "$maxIterations" -ge 200 ]; } ||
+  { echo "error: hydrofoil-pitch: H3P_MAX_ITERATIONS '$maxIterations' must be an integer >= 200 (the band rule's two 100-iteration blocks), e.g. 1500" >&2; exit 2; }
 for v in "$band" "$bandMean"; do
   [ -z "$v" ] || awk -v b="$v" 'BEGIN { exit !(b ~ /^[0-9]*\.?[0-9]+([eE][-+]?[0-9]+)?$/ && b > 0 && b <= 0.1) }' ||
     { echo "error: hydrofoil-pitch: H3P_BAND / H3P_BAND_MEAN '$v' must be a fraction of |F| in (0, 0.1], e.g. 5e-4" >&2; exit 2; }
@@ -99,6 +107,8 @@ for level in $levels; do
       "$c/system/fsiDict" > /dev/null
     [ -z "$band" ] || foamDictionary -entry coupled/bandTolerance -set "$band" "$c/system/fsiDict" > /dev/null
     [ -z "$bandMean" ] || foamDictionary -entry coupled/bandMeanTolerance -set "$bandMean" "$c/system/fsiDict" > /dev/null
+    [ -z "$maxIterations" ] ||
+      foamDictionary -entry coupled/maxIterations -set "$maxIterations" "$c/system/fsiDict" > /dev/null
     if [ "$shape" = pitch ]; then
       motion="type rotation; origin (0.3685 0 0); axis (0 0 1); angle $angle;"
     else   # twist linear from the root (z = 0) to the tip (0.1 m), bending quadratic in -y
