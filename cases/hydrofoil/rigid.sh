@@ -46,7 +46,8 @@
 #                        contradicts it is refused; a case made before 2026-12-07 has none),
 #                        the cap stays --max-iterations in all (the rerun may do N - T), the
 #                        stopping test starts anew. rigid.csv's iterations count
-#                        from 0, its cpu_s and wall_s are the last run's only. Without a
+#                        from 0, its cpu_s and wall_s sum every run of the solve (below,
+#                        runs; before 2026-12-07 the last run's only). Without a
 #                        written iteration in RUNDIR/case: exit 2
 #   --shape-from CASE    solve the foil in the shape of a coupled run: CASE is a coupled fluid
 #                        case of run.sh (RUN/fluid-baseline, on the same --mesh; --np: its ranks); its
@@ -69,7 +70,10 @@
 # the force's relative half-range over the last 200 iterations), lift = -F_y, drag = F_x (N), root pitching moment
 # M_z about the root quarter chord (0.3685, 0, 0) (N m, the spanwise axis: nose-up positive, as
 # the 2-D section mode's C_M), the foil's first-cell y+ (yPlus function object: max, mean over the faces, the
-# fraction of foil faces with y+ <= 1, separately for the tip faces), CPU and wall seconds.
+# fraction of foil faces with y+ <= 1, separately for the tip faces), CPU and wall seconds, and
+# runs: how many runs the solve took (a resumed solve: 1 + its resumptions; CPU and wall seconds
+# are then the sum over them, an earlier run stopped from outside counted from its log's start
+# stamp to its last write, its CPU as ranks x wall).
 # fluid-app must be on PATH (scripts/run and scripts/verify put the build's bin/ first).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -277,10 +281,13 @@ else
 fi
 cells=$(awk '/^ *cells:/{print $2; exit}' "$mesh/log.checkMesh" 2>/dev/null || echo nan)
 
-/usr/bin/python3 - "$case" "$cells" "$flow" "$scheme" "$t0" "$t1" "$out/rigid.csv" <<'EOP'
+/usr/bin/python3 - "$case" "$cells" "$flow" "$scheme" "$t0" "$t1" "$out/rigid.csv" "$np" "$here/tools" <<'EOP'
 import csv, glob, os, re, sys
 import numpy as np
-case, cells, flow, scheme, t0, t1, outCsv = sys.argv[1:]
+case, cells, flow, scheme, t0, t1, outCsv, ranks, tools = sys.argv[1:]
+sys.path.insert(0, tools)
+from solveRunTime import earlierRuns   # a resumed solve's earlier runs
+
 row = next(csv.DictReader(open(os.path.join(case, "postProcessing/fsi/forces.csv"))))
 mom = sorted(glob.glob(os.path.join(case, "postProcessing/forces/*/moment.dat")))[-1]
 last = [l for l in open(mom) if l.strip() and not l.startswith("#")][-1]
@@ -302,13 +309,19 @@ yp = patchValues("yPlus")
 cf = patchValues("C")
 tip = cf[:, 2] > 0.100 - 1e-7          # faces of the tip plane z = 0.100
 cpu = sum(map(float, open(os.path.join(case, "time.txt")).read().split()[:2]))
+try:
+    wallBefore, cpuBefore, runsBefore = earlierRuns(case, int(ranks))
+except ValueError as e:   # the solve's result is kept; only its cost is then partial
+    print("warning: rigid.sh: %s; cpu_s and wall_s count the last run only" % e, file=sys.stderr)
+    wallBefore, cpuBefore, runsBefore = 0.0, 0.0, 0
 res = dict(cells=cells, flow=flow, scheme=scheme, iterations=row["simpleIterations"],
            converged=row["converged"], in_the_mean=row["inTheMean"], band="%.3g" % float(row["band"]),
            lift_N="%.6g" % -float(row["Fy"]), drag_N="%.6g" % float(row["Fx"]),
            root_moment_z_Nm="%.6g" % mz, foil_faces=len(yp), yplus_max="%.3f" % yp.max(),
            yplus_mean="%.3f" % yp.mean(), yplus_le1_pct="%.2f" % (100.0 * np.mean(yp <= 1.0)),
            tip_faces=int(tip.sum()), tip_yplus_max="%.3f" % (yp[tip].max() if tip.any() else float("nan")),
-           cpu_s="%.1f" % cpu, wall_s="%.1f" % (float(t1) - float(t0)))
+           cpu_s="%.1f" % (cpu + cpuBefore), wall_s="%.1f" % (float(t1) - float(t0) + wallBefore),
+           runs=runsBefore + 1)
 with open(outCsv, "w", newline="") as f:
     w = csv.DictWriter(f, fieldnames=list(res))
     w.writeheader()

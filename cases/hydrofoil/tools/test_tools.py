@@ -1,15 +1,16 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""Checks of tools/forceConvergence.py, tools/iterationBand.py, tools/mshinfo.py, tools/foilMotion.py
-and tools/displacementJumps.py on small synthetic inputs, and of tools/mapInitialFields.sh's
-input checks."""
+"""Checks of tools/forceConvergence.py, tools/iterationBand.py, tools/mshinfo.py, tools/foilMotion.py,
+tools/displacementJumps.py and tools/solveRunTime.py on small synthetic inputs, and of
+tools/mapInitialFields.sh's input checks."""
 import io
 import os
 import re
 import sys
 import tempfile
+import time
 import unittest
-from contextlib import redirect_stdout
+from contextlib import redirect_stderr, redirect_stdout
 
 import numpy as np
 
@@ -19,6 +20,7 @@ import foilMotion  # noqa: E402
 import forceConvergence as fc  # noqa: E402
 import iterationBand  # noqa: E402
 import mshinfo  # noqa: E402
+import solveRunTime  # noqa: E402
 
 
 def _foamList(rows, fmt):
@@ -290,6 +292,51 @@ class IterationBand(unittest.TestCase):
             with self.assertRaises(SystemExit) as e:
                 iterationBand.band_summary(last, 30)
             self.assertIn("fewer than --last 30", str(e.exception))
+
+
+class SolveRunTime(unittest.TestCase):
+    """A resumed rigid solve's earlier runs: wall from the banner's start stamp to the log's last
+    write; CPU from the run's time record, else ranks x wall."""
+
+    def _log(self, case, name, start, end):
+        path = os.path.join(case, name)
+        stamp = time.localtime(start)
+        with open(path, "w") as f:
+            f.write("Build  : v1912\nExec   : fluid-app -rigid -parallel\n")
+            f.write(time.strftime("Date   : %b %d %Y\n", stamp))
+            f.write(time.strftime("Time   : %H:%M:%S\n", stamp))
+            f.write("smoothSolver:  Solving for Ux\n")
+        os.utime(path, (end, end))
+
+    def test_sums_stopped_and_finished_runs(self):
+        with tempfile.TemporaryDirectory() as case:
+            t = float(int(time.time()) - 100000)
+            self._log(case, "log.fluid-app.before-400", t, t + 2000)        # stopped: no record
+            open(os.path.join(case, "time.txt.before-400"), "w").close()
+            self._log(case, "log.fluid-app.before-2200", t + 3000, t + 10000)   # ended by itself
+            with open(os.path.join(case, "time.txt.before-2200"), "w") as f:
+                f.write("12000.5 300.25\n")
+            self._log(case, "log.fluid-app", t + 11000, t + 12000)           # the last run: not counted
+            wall, cpu, runs = solveRunTime.earlierRuns(case, 2)
+            self.assertEqual(runs, 2)
+            self.assertAlmostEqual(wall, 2000 + 7000, delta=1e-6)
+            self.assertAlmostEqual(cpu, 2 * 2000 + 12300.75, delta=1e-6)
+
+    def test_no_earlier_run(self):
+        with tempfile.TemporaryDirectory() as case:
+            self.assertEqual(solveRunTime.earlierRuns(case, 2), (0.0, 0.0, 0))
+
+    def test_log_without_start_stamp_is_refused(self):
+        with tempfile.TemporaryDirectory() as case:
+            with open(os.path.join(case, "log.fluid-app.before-200"), "w") as f:
+                f.write("no banner\n")
+            with self.assertRaises(ValueError):
+                solveRunTime.earlierRuns(case, 2)
+            err = io.StringIO()
+            with redirect_stderr(err):
+                self.assertEqual(solveRunTime.main([case, "2"]), 2)
+            self.assertEqual(len(err.getvalue().strip().splitlines()), 1)
+            self.assertIn("log.fluid-app.before-200", err.getvalue())
 
 
 if __name__ == "__main__":
