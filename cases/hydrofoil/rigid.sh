@@ -286,7 +286,7 @@ import csv, glob, os, re, sys
 import numpy as np
 case, cells, flow, scheme, t0, t1, outCsv, ranks, tools = sys.argv[1:]
 sys.path.insert(0, tools)
-from solveRunTime import earlierRuns   # a resumed solve's earlier runs
+from solveRunTime import earlierRuns, recordedCpu   # a resumed solve's runs
 
 row = next(csv.DictReader(open(os.path.join(case, "postProcessing/fsi/forces.csv"))))
 mom = sorted(glob.glob(os.path.join(case, "postProcessing/forces/*/moment.dat")))[-1]
@@ -308,7 +308,9 @@ def patchValues(field):
 yp = patchValues("yPlus")
 cf = patchValues("C")
 tip = cf[:, 2] > 0.100 - 1e-7          # faces of the tip plane z = 0.100
-cpu = sum(map(float, open(os.path.join(case, "time.txt")).read().split()[:2]))
+cpu = recordedCpu(os.path.join(case, "time.txt"))
+if cpu is None:
+    sys.exit("error: rigid.sh: %s/time.txt holds no time record of the solve" % case)
 try:
     wallBefore, cpuBefore, runsBefore = earlierRuns(case, int(ranks))
 except ValueError as e:   # the solve's result is kept; only its cost is then partial

@@ -30,19 +30,25 @@ def runStart(log):
     return time.mktime(time.strptime(date.group(1) + " " + hms.group(1), "%b %d %Y %H:%M:%S"))
 
 
+def recordedCpu(record):
+    """CPU seconds (user + sys) of a run's time record (`user sys`, /usr/bin/time -f "%U %S"),
+    or None when the record is missing or empty (a run stopped from outside)."""
+    if not os.path.isfile(record):
+        return None
+    with open(record) as f:
+        words = f.read().split()
+    return sum(map(float, words[:2])) if len(words) >= 2 else None
+
+
 def earlierRuns(case, ranks):
     """(wall_s, cpu_s, runs) of CASE's earlier runs (the module's doc)."""
     wall = cpu = 0.0
     logs = sorted(glob.glob(os.path.join(case, "log.fluid-app.before-*")))
     for log in logs:
         w = max(0.0, os.path.getmtime(log) - runStart(log))
-        record = os.path.join(case, os.path.basename(log).replace("log.fluid-app", "time.txt"))
-        words = []
-        if os.path.isfile(record):
-            with open(record) as f:
-                words = f.read().split()
+        recorded = recordedCpu(os.path.join(case, os.path.basename(log).replace("log.fluid-app", "time.txt")))
         wall += w
-        cpu += sum(map(float, words[:2])) if len(words) >= 2 else ranks * w
+        cpu += recorded if recorded is not None else ranks * w
     return wall, cpu, len(logs)
 
 
