@@ -52,6 +52,19 @@
 #                                           default before 2026-12-05). With --mesh-from or
 #                                           --restart the mesh is the one in that folder
 #                                           (mesh/mesh-summary.txt) and the model follows it
+#   --solid-element tet10|hex20             the foil's finite elements (mesh.sh makes both): tet10
+#                                           (default), plain quadratic tetrahedra; hex20, the
+#                                           structured Hex20 mesh with the projected dilatation
+#                                           (B-bar: no locking at nu = 0.49; the solid configs'
+#                                           solid.element, config/solid.example.yaml). A --restart
+#                                           keeps the element of the run's first start
+#   --solid-mesh-from DIR                   the structural meshes of DIR/mesh/solid (another run or
+#                                           mesh folder of the same section: t/c, C_Li and mean
+#                                           line checked) instead of this run's own: a mesh study of
+#                                           the fluid with one structure (README, "The structure's
+#                                           share of the coupled mesh study"). Copied into this
+#                                           run's mesh/solid; mesh/mesh-summary.txt names DIR.
+#                                           Not with --restart (the run keeps its meshes)
 #   --init-from CASE                        start every fluid solve's first iteration from the
 #                                           solution of the OpenFOAM case CASE (reconstructed,
 #                                           latest time; e.g. a rigid.sh/blcheck.sh rigid/case
@@ -140,6 +153,7 @@ case "${1:-}" in -h|--help) sed -n '3,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}
 source "$FSI_ROOT/scripts/env.sh"
 
 preset=coarse material=both npf=2 nps=2 launch=mpmd tc=0.12 cli=0.5 end="" timeout=900 meshFrom="" restart=0 checkOnly=0
+solidElement="" solidFrom=""
 flow="" scheme=upwind rootWall=wall algorithm="" fluidMesh="" initFrom="" band="" maxFluidIt="" fluidTol="" couplingTol="" bandFactor="" bandWindow="" bandMean="" bandRef="" oscWindow="" wsFlux="" wsMaxCoef="" mapSmoothing="" acceleration=""
 die() { echo "error: hydrofoil/run.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
@@ -160,6 +174,8 @@ while [ $# -gt 0 ]; do
     --simple-acceleration) [ $# -ge 2 ] || die "--simple-acceleration needs none or anderson[:DEPTH]"; acceleration=$2; shift 2 ;;
     --root-wall) [ $# -ge 2 ] || die "--root-wall needs wall or slip"; rootWall=$2; shift 2 ;;
     --fluid-mesh) fluidMesh=$2; shift 2 ;;
+    --solid-element) [ $# -ge 2 ] || die "--solid-element needs tet10 or hex20"; solidElement=$2; shift 2 ;;
+    --solid-mesh-from) [ $# -ge 2 ] || die "--solid-mesh-from needs a run or mesh folder"; solidFrom=$2; shift 2 ;;
     --init-from) [ $# -ge 2 ] || die "--init-from needs an OpenFOAM case folder"; initFrom=$2; shift 2 ;;
     --band-tolerance) [ $# -ge 2 ] || die "--band-tolerance needs a value"; band=$2; shift 2 ;;
     --band-mean-tolerance) [ $# -ge 2 ] || die "--band-mean-tolerance needs a value"; bandMean=$2; shift 2 ;;
@@ -184,6 +200,20 @@ case "$launch" in mpmd|port) ;; *) die "--launch must be mpmd or port" ;; esac
 case "$fluidMesh" in ""|snappy|cgrid) ;; *) die "--fluid-mesh must be cgrid or snappy (got '$fluidMesh')" ;; esac
 case "$algorithm" in ""|simple|simplec) ;; *) die "--algorithm must be simple or simplec (got '$algorithm')" ;; esac
 case "$rootWall" in wall|slip) ;; *) die "--root-wall must be wall (the paper's no-slip tunnel) or slip (got '$rootWall')" ;; esac
+case "$solidElement" in ""|tet10|hex20) ;; *) die "--solid-element must be tet10 or hex20 (got '$solidElement')" ;; esac
+# The element of a restarted run is the one of its first start (solid-element, written then)
+if [ "$restart" = 1 ] && [ -f solid-element ]; then
+  [ -z "$solidElement" ] || [ "$solidElement" = "$(cat solid-element)" ] ||
+      die "--solid-element $solidElement: this run started with $(cat solid-element); a --restart keeps it (leave the option out)"
+  solidElement=$(cat solid-element)
+fi
+solidElement=${solidElement:-tet10}
+if [ -n "$solidFrom" ]; then
+  [ "$restart" = 0 ] || die "--solid-mesh-from: a --restart keeps the run's meshes (leave the option out)"
+  [ -f "$solidFrom/mesh/mesh-summary.txt" ] && [ -f "$solidFrom/mesh/solid/foil-$solidElement.msh" ] ||
+      die "--solid-mesh-from $solidFrom: no mesh/mesh-summary.txt and mesh/solid/foil-$solidElement.msh there (a run or mesh folder made by mesh.sh)"
+  solidFrom=$(cd "$solidFrom" && pwd)
+fi
 # The fluid mesh of this run: a new one (--fluid-mesh, default cgrid) or the one of --mesh-from /
 # --restart; the model follows the mesh unless given (tools/meshModel.sh; README, "The case
 # default"): k-omega SST with SIMPLEC on the boundary-layer mesh (classic SIMPLE on an older
@@ -238,6 +268,7 @@ fi
     die "--coupling-band-factor '$bandFactor' must be a number in [0, 1000], e.g. 0 (never widen the coupling tolerance)"
 [ -z "$bandFactor" ] || configsHave --coupling-band-factor \
     "'band_factor:' line under coupling.convergence" '^    band_factor: '
+[ "$solidElement" = tet10 ] || configsHave --solid-element "'kinematics:' line under solid" '^  kinematics: '
 [ -z "$mapSmoothing" ] || awk -v r="$mapSmoothing" 'BEGIN{exit !(r ~ /^[0-9.eE+-]+$/ && r + 0 >= 0 && r + 0 < 1e-2)}' ||
     die "--mapping-smoothing '$mapSmoothing' must be a radius in m in [0, 1e-2), e.g. 2e-4 (0 = off)"
 [ -z "$mapSmoothing" ] || configsHave --mapping-smoothing \
@@ -280,8 +311,24 @@ log "model: flow $flow, convection $scheme, pressure-velocity ${algorithm:-simpl
 if [ "$fluidMesh" = cgrid ] && [ "$algorithm" = simple ]; then
   log "note: with classic SIMPLE the coupled solves on the boundary-layer mesh converge slowly (a viscoelastic history takes hours; README, \"The case default\"); a mesh made now (without --mesh-from) runs SIMPLEC"
 fi
-solidMesh=$run/mesh/solid/foil-tet10.msh
-[ -f "$solidMesh" ] || die "no structural mesh $solidMesh"
+if [ -n "$solidFrom" ]; then
+  # section KEY SUMMARY: the section parameter KEY (tc, cli, meanline) of a mesh summary's first line
+  section() { head -n 1 "$2" | tr ' ' '\n' | sed -n "s/^$1=//p"; }
+  for k in tc cli meanline; do
+    [ "$(section $k "$solidFrom/mesh/mesh-summary.txt")" = "$(section $k "$run/mesh/mesh-summary.txt")" ] ||
+        die "--solid-mesh-from $solidFrom: its section has $k=$(section $k "$solidFrom/mesh/mesh-summary.txt"), this run's $k=$(section $k "$run/mesh/mesh-summary.txt")"
+  done
+  rm -rf "$run/mesh/solid" && cp -r "$solidFrom/mesh/solid" "$run/mesh/solid"
+  sed -i '/^foil-[a-z0-9-]*\.msh: /d' "$run/mesh/mesh-summary.txt"
+  { echo "solid meshes from $solidFrom ($(head -n 1 "$solidFrom/mesh/mesh-summary.txt" | tr ' ' '\n' | grep '^preset='))"
+    grep '^foil-[a-z0-9-]*\.msh: ' "$solidFrom/mesh/mesh-summary.txt" || true; } >> "$run/mesh/mesh-summary.txt"
+  log "structural meshes from $solidFrom"
+fi
+solidMesh=$run/mesh/solid/foil-$solidElement.msh
+[ -f "$solidMesh" ] || die "no structural mesh $solidMesh (mesh.sh makes foil-tet10.msh and foil-hex20.msh)"
+echo "$solidElement" > "$run/solid-element"
+elementNote=""; [ "$solidElement" = tet10 ] || elementNote=", projected dilatation (B-bar)"
+log "structure: $(basename "$solidMesh")$elementNote"
 
 runs=()
 case "$material" in
@@ -338,6 +385,8 @@ for m in "${runs[@]}"; do
   [ "$npf" -gt 1 ] && parallel=-parallel
   cfg=$run/$m.yaml
   sed "s|@MESH@|$solidMesh|" "$run/solid/$m.yaml" > "$cfg"
+  # Hex20 locks at nu = 0.49 as plain elements: the projected dilatation (solid.element)
+  [ "$solidElement" != hex20 ] || sed -i 's/^  kinematics: .*/&\n  element:\n    type: projected-dilatation/' "$cfg"
   # the solid-config options given (configsHave checked their lines above)
   [ -z "$fluidTol" ] || "$run/tools/setFluidTolerance.sh" "$cfg" "$fluidTol"
   setConfigNumber "$cfg" absolute_tolerance "$couplingTol"

@@ -28,6 +28,9 @@
 # the force swinging by +-0.3-0.7 % (lift; a two-iteration cycle), so at the fluid
 # accuracy 5e-5 and the case's band 2e-3 every one of its solves ran to the 400-iteration cap and
 # the level was never accepted (2026-12-06; cases/hydrofoil/README.md).
+# HYDROFOIL_SOLID_ELEMENT (tet10 | hex20) and HYDROFOIL_SOLID_MESH_FROM as hydrofoil.sh: the
+# model gets -hex20, and -solid-PRESET when one structural mesh serves every level (only the fluid
+# is refined: cases/hydrofoil/README.md, "The structure's share of the coupled mesh study").
 # HYDROFOIL_SHAPE_CHECK=1: afterwards every level's accepted state is solved on to convergence
 # at its shape (cases/hydrofoil/tools/shapeCheck.sh: rigid.sh --shape-from with the rigid
 # study's stopping test: force error 1e-5 held 100 iterations, or in the mean, band 1e-4 and
@@ -49,7 +52,17 @@ algorithm=${H3D_ALGORITHM:-simplec} scheme=${H3D_SCHEME:-upwind} rootWall=${H3D_
 case "$algorithm" in simple|simplec) ;; *) echo "error: hydrofoil-cgrid: H3D_ALGORITHM='$algorithm' must be simple or simplec" >&2; exit 2 ;; esac
 case "$scheme" in upwind|linearUpwind) ;; *) echo "error: hydrofoil-cgrid: H3D_SCHEME='$scheme' must be upwind or linearUpwind" >&2; exit 2 ;; esac
 case "$rootWall" in wall) suffix="" ;; slip) suffix=-slip ;; *) echo "error: hydrofoil-cgrid: H3D_ROOT_WALL='$rootWall' must be wall or slip" >&2; exit 2 ;; esac
-model=turbulent-$scheme-$algorithm-cgrid$suffix-baseline
+# the structure, when not the preset's own Tet10 foil (hydrofoil.sh: HYDROFOIL_SOLID_ELEMENT,
+# HYDROFOIL_SOLID_MESH_FROM): -hex20, and -solid-PRESET for one structural mesh on every level
+solidTag=""
+case "${HYDROFOIL_SOLID_ELEMENT:-tet10}" in tet10) ;; hex20) solidTag=-hex20 ;; *) echo "error: hydrofoil-cgrid: HYDROFOIL_SOLID_ELEMENT='$HYDROFOIL_SOLID_ELEMENT' must be tet10 or hex20" >&2; exit 2 ;; esac
+if [ -n "${HYDROFOIL_SOLID_MESH_FROM:-}" ]; then
+    [ "${HYDROFOIL_SOLID_MESH_FROM//LEVEL/}" = "$HYDROFOIL_SOLID_MESH_FROM" ] || { echo "error: hydrofoil-cgrid: HYDROFOIL_SOLID_MESH_FROM='$HYDROFOIL_SOLID_MESH_FROM': give one folder for every level (without LEVEL)" >&2; exit 2; }
+    solidSummary=$HYDROFOIL_SOLID_MESH_FROM/mesh/mesh-summary.txt
+    [ -f "$solidSummary" ] || { echo "error: hydrofoil-cgrid: HYDROFOIL_SOLID_MESH_FROM: no $solidSummary (a run or mesh folder made by mesh.sh)" >&2; exit 2; }
+    solidTag+=-solid-$(head -n 1 "$solidSummary" | tr ' ' '\n' | sed -n 's/^preset=//p')
+fi
+model=turbulent-$scheme-$algorithm-cgrid$suffix$solidTag-baseline
 if [ "$scheme" = linearUpwind ]; then
     export HYDROFOIL_OSCILLATION_WINDOW=${HYDROFOIL_OSCILLATION_WINDOW:-20}
     export HYDROFOIL_COUPLING_TOLERANCE=${HYDROFOIL_COUPLING_TOLERANCE:-1e-6}

@@ -35,6 +35,11 @@
 #                      |r|/sqrt(n); default unset, the case's 5e-6). The coupled state carries an
 #                      error of about |last change| x r_last / r_previous in each quantity; near the
 #                      case's torsional divergence 5e-6 m was worth 0.5 % of lift (second order, coarse)
+#   HYDROFOIL_FLUID_TOLERANCE  F: run.sh --fluid-tolerance F (every coupled solve's force accuracy;
+#                      default unset, the case's 5e-5). Its noise in the interface residual is
+#                      about 2e-6 m near the case's torsional divergence, so a 1e-6 m coupling
+#                      tolerance may stall at 5e-5 (a coarse level with the fine structure did:
+#                      cases/hydrofoil/README.md, "The structure's share of the coupled mesh study")
 #   HYDROFOIL_BAND_TOLERANCE  B: run.sh --band-tolerance B (a solve without a steady state may be
 #                      accepted in the mean when its force stays within +-B |F| over two blocks;
 #                      default unset, the case's 2e-3)
@@ -42,6 +47,11 @@
 #                      accepted in the mean when its two blocks' mean forces differ by <= M |F|;
 #                      default unset, the fluid accuracy asked). For a flow that swings about a
 #                      mean (second order on the moved fine cgrid mesh: +-0.3 %, means to 5e-5)
+#   HYDROFOIL_SOLID_ELEMENT  tet10 (default) | hex20: run.sh --solid-element (Hex20 with the
+#                      projected dilatation)
+#   HYDROFOIL_SOLID_MESH_FROM  a run or mesh folder, LEVEL in it replaced by the preset (e.g. a
+#                      fixed .../mesh-fine): every level's structure meshed as there (run.sh
+#                      --solid-mesh-from), so that only the fluid mesh is refined
 #   HYDROFOIL_INIT_FROM  a path with LEVEL in it (e.g. .../turbulent-upwind-simple-LEVEL/rigid/case):
 #                      each level's fluid starts from that OpenFOAM case's solution (run.sh
 #                      --init-from), LEVEL replaced by the preset; must exist for every level
@@ -67,9 +77,11 @@ initPattern=${HYDROFOIL_INIT_FROM:-}
 oscWindow=${HYDROFOIL_OSCILLATION_WINDOW:-}
 couplingTol=${HYDROFOIL_COUPLING_TOLERANCE:-}
 band=${HYDROFOIL_BAND_TOLERANCE:-} bandMean=${HYDROFOIL_BAND_MEAN:-}
+fluidTol=${HYDROFOIL_FLUID_TOLERANCE:-}
+solidElement=${HYDROFOIL_SOLID_ELEMENT:-} solidFromPattern=${HYDROFOIL_SOLID_MESH_FROM:-}
 case "$fluidMesh" in snappy|cgrid) ;; *) echo "error: hydrofoil: HYDROFOIL_FLUID_MESH='$fluidMesh' must be snappy or cgrid" >&2; exit 2 ;; esac
 # Every level's run options, before anything is meshed or run: run.sh --check-only names a bad
-# value (HYDROFOIL_FLOW/SCHEME/ALGORITHM/ROOT_WALL/OSCILLATION_WINDOW/COUPLING_TOLERANCE/BAND_TOLERANCE/BAND_MEAN, a missing init
+# value (HYDROFOIL_FLOW/SCHEME/ALGORITHM/ROOT_WALL/OSCILLATION_WINDOW/COUPLING_TOLERANCE/FLUID_TOLERANCE/BAND_TOLERANCE/BAND_MEAN/SOLID_*, a missing init
 # case) in one line
 runOptions() { # LEVEL: the run.sh options of that level (without --mesh-from) into opts
   opts=(--preset "$1" --material baseline --np-fluid "$npf" --np-solid "$nps" --timeout "$timeout"
@@ -77,9 +89,12 @@ runOptions() { # LEVEL: the run.sh options of that level (without --mesh-from) i
   [ -z "$algorithm" ] || opts+=(--algorithm "$algorithm")
   [ -z "$oscWindow" ] || opts+=(--oscillation-window "$oscWindow")
   [ -z "$couplingTol" ] || opts+=(--coupling-tolerance "$couplingTol")
+  [ -z "$fluidTol" ] || opts+=(--fluid-tolerance "$fluidTol")
   [ -z "$band" ] || opts+=(--band-tolerance "$band")
   [ -z "$bandMean" ] || opts+=(--band-mean-tolerance "$bandMean")
   [ -z "$initPattern" ] || opts+=(--init-from "${initPattern//LEVEL/$1}")
+  [ -z "$solidElement" ] || opts+=(--solid-element "$solidElement")
+  [ -z "$solidFromPattern" ] || opts+=(--solid-mesh-from "${solidFromPattern//LEVEL/$1}")
 }
 for level in $levels; do
   [ -z "$initPattern" ] || [ -d "${initPattern//LEVEL/$level}/constant/polyMesh" ] || { echo "error: hydrofoil: HYDROFOIL_INIT_FROM: no OpenFOAM case ${initPattern//LEVEL/$level} for $level (run its rigid solve first, e.g. scripts/verify hydrofoil-3d-rigid)" >&2; exit 2; }
