@@ -4,6 +4,7 @@
 tools/displacementJumps.py and tools/solveRunTime.py on small synthetic inputs, and of
 tools/mapInitialFields.sh's input checks."""
 import io
+import math
 import os
 import re
 import sys
@@ -20,6 +21,7 @@ import foilMotion  # noqa: E402
 import forceConvergence as fc  # noqa: E402
 import iterationBand  # noqa: E402
 import mshinfo  # noqa: E402
+import sectionShape  # noqa: E402
 import solveRunTime  # noqa: E402
 
 
@@ -337,6 +339,61 @@ class SolveRunTime(unittest.TestCase):
                 self.assertEqual(solveRunTime.main([case, "2"]), 2)
             self.assertEqual(len(err.getvalue().strip().splitlines()), 1)
             self.assertIn("log.fluid-app.before-200", err.getvalue())
+
+
+class SectionShape(unittest.TestCase):
+    """A beam's motion (heave, twist about the quarter chord, both varying along the span) is
+    fitted exactly with zero camber; an added parabola in x is the camber, exactly."""
+
+    def _surface(self, n=400, seed=3):
+        rng = np.random.default_rng(seed)
+        x = 0.356 + 0.05 * rng.random(n)
+        y = 0.003 * (rng.random(n) - 0.5)
+        z = 0.1 * rng.random(n)
+        return np.stack([x, y, z], axis=1)
+
+    def _beam(self, p, camber=0.0):
+        x, y, z = p.T
+        theta = -0.03 * z / 0.1                  # twist [rad], linear along the span
+        w = -4e-3 * (z / 0.1) ** 2               # heave of the quarter chord [m]
+        X = x - sectionShape.X_QC
+        uy = w + theta * X + camber * (X / 0.025) ** 2
+        return np.stack([-theta * y, uy, np.zeros_like(z)], axis=1)
+
+    def test_beam_motion_exact(self):
+        p = self._surface()
+        s = sectionShape.section_shape(p, self._beam(p), 0.05, 2.5e-3)
+        self.assertAlmostEqual(s["twist_deg"], math.degrees(-0.015), delta=1e-9)
+        self.assertAlmostEqual(s["heave_mm"], -1.0, delta=1e-9)
+        self.assertAlmostEqual(s["camber_mm"], 0.0, delta=1e-9)
+
+    def test_camber_exact(self):
+        p = self._surface()
+        base = sectionShape.section_shape(p, self._beam(p), 0.07, 2.5e-3)
+        bent = sectionShape.section_shape(p, self._beam(p, camber=5e-5), 0.07, 2.5e-3)
+        self.assertAlmostEqual(bent["camber_mm"] - base["camber_mm"], 0.05, delta=1e-9)
+        self.assertAlmostEqual(bent["twist_deg"], base["twist_deg"], delta=1e-9)
+
+    def test_reads_interface_csv_and_refuses_a_thin_slab(self):
+        p = self._surface()
+        u = self._beam(p)
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "level_0000.csv")
+            with open(path, "w") as f:
+                f.write("# level 0 time 0 s\nx,y,z,ux,uy,uz,fx,fy,fz\n")
+                for a, b in zip(p, u):
+                    f.write(",".join("%.17g" % v for v in list(a) + list(b) + [0, 0, 0]) + "\n")
+            points, disp = sectionShape.read_interface(path)
+            np.testing.assert_allclose(disp, u, rtol=0, atol=1e-15)
+            out = io.StringIO()
+            with redirect_stdout(out):
+                sectionShape.main([path, "--stations", "0.05"])
+            fields = dict(kv.split("=") for kv in out.getvalue().split()[1:])
+            self.assertAlmostEqual(float(fields["twist_deg"]), math.degrees(-0.015), delta=1e-5)
+            self.assertAlmostEqual(float(fields["camber_mm"]), 0.0, delta=1e-5)
+            with self.assertRaises(SystemExit) as e:
+                sectionShape.main([path, "--stations", "0.05", "--half-width", "1e-6"])
+            self.assertIn("--half-width", str(e.exception))
 
 
 if __name__ == "__main__":
