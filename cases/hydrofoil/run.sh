@@ -59,8 +59,8 @@
 #                                           solid.element, config/solid.example.yaml). A --restart
 #                                           keeps the element of the run's first start
 #   --solid-mesh-from DIR                   the structural meshes of DIR/mesh/solid (another run or
-#                                           mesh folder of the same section: t/c, C_Li and mean
-#                                           line checked) instead of this run's own: a mesh study of
+#                                           mesh folder of the same section: t/c and C_Li
+#                                           checked) instead of this run's own: a mesh study of
 #                                           the fluid with one structure (README, "The structure's
 #                                           share of the coupled mesh study"). Copied into this
 #                                           run's mesh/solid; mesh/mesh-summary.txt names DIR.
@@ -227,6 +227,17 @@ read -r meshKind defaultFlow defaultAlgorithm < <("$FSI_ROOT/cases/hydrofoil/too
 [ -z "$fluidMesh" ] || [ "$fluidMesh" = "$meshKind" ] ||
     die "--fluid-mesh $fluidMesh: the fluid mesh in $(dirname "$(dirname "$summary")") is $meshKind (leave --fluid-mesh out with --mesh-from or --restart)"
 fluidMesh=$meshKind
+if [ -n "$solidFrom" ]; then
+  # the structure's section must be this run's: t/c and C_Li of its mesh summary's first line
+  # against the --mesh-from mesh's (or --tc / --cli for a mesh made now)
+  section() { head -n 1 "$2" | tr ' ' '\n' | sed -n "s/^$1=//p"; }
+  for k in tc cli; do
+    theirs=$(section $k "$solidFrom/mesh/mesh-summary.txt")
+    if [ -n "$meshFrom" ]; then ours=$(section $k "$summary"); elif [ $k = tc ]; then ours=$tc; else ours=$cli; fi
+    awk -v a="$theirs" -v b="$ours" 'BEGIN{exit !(a != "" && b != "" && a + 0 == b + 0)}' ||
+        die "--solid-mesh-from $solidFrom: its section has $k=${theirs:-?}, this run's $k=${ours:-?} (mesh both with the same --tc / --cli)"
+  done
+fi
 flow=${flow:-$defaultFlow} algorithm=${algorithm:-$defaultAlgorithm}
 [ "$algorithm" != simplec ] || algorithm=""
 "$FSI_ROOT/cases/hydrofoil/tools/setFlow.sh" --check-only --flow "$flow" --scheme "$scheme" \
@@ -312,12 +323,6 @@ if [ "$fluidMesh" = cgrid ] && [ "$algorithm" = simple ]; then
   log "note: with classic SIMPLE the coupled solves on the boundary-layer mesh converge slowly (a viscoelastic history takes hours; README, \"The case default\"); a mesh made now (without --mesh-from) runs SIMPLEC"
 fi
 if [ -n "$solidFrom" ]; then
-  # section KEY SUMMARY: the section parameter KEY (tc, cli, meanline) of a mesh summary's first line
-  section() { head -n 1 "$2" | tr ' ' '\n' | sed -n "s/^$1=//p"; }
-  for k in tc cli meanline; do
-    [ "$(section $k "$solidFrom/mesh/mesh-summary.txt")" = "$(section $k "$run/mesh/mesh-summary.txt")" ] ||
-        die "--solid-mesh-from $solidFrom: its section has $k=$(section $k "$solidFrom/mesh/mesh-summary.txt"), this run's $k=$(section $k "$run/mesh/mesh-summary.txt")"
-  done
   rm -rf "$run/mesh/solid" && cp -r "$solidFrom/mesh/solid" "$run/mesh/solid"
   sed -i '/^foil-[a-z0-9-]*\.msh: /d' "$run/mesh/mesh-summary.txt"
   { echo "solid meshes from $solidFrom ($(head -n 1 "$solidFrom/mesh/mesh-summary.txt" | tr ' ' '\n' | grep '^preset='))"

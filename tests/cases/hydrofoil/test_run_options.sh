@@ -7,7 +7,8 @@
 # that lacks its line), --coupling-tolerance,
 # --coupling-band-factor, --warm-start-flux,
 # --mapping-smoothing, --max-fluid-iterations, --fluid-mesh, --algorithm, --root-wall and
-# --simple-acceleration (and a --fluid-mesh
+# --simple-acceleration, --solid-element and --solid-mesh-from (a folder without the element's
+# mesh, of another section, or with --restart) (and a --fluid-mesh
 # that contradicts the mesh of --mesh-from) before it writes anything:
 # exit 2, one line on stderr naming the option, no mesh/ or results/ in the run folder; so is an
 # --init-from case without a reconstructed solved time. `run.sh --check-only` exits 0 on valid
@@ -81,6 +82,18 @@ fake=$work/fake-snappy-run
 rm -rf "$fake"; mkdir -p "$fake/mesh"
 echo "hydrofoil meshes (2026-12-05T00:00:00Z): preset=coarse tc=0.12 cli=0.5 meanline=a08 fluid-mesh=snappy" > "$fake/mesh/mesh-summary.txt"
 check --fluid-mesh cgrid --mesh-from "$fake"
+# --solid-element: an unknown element; --solid-mesh-from: a folder without the element's mesh,
+# one of another section (t/c), and one with --restart: refused before anything is written
+check --solid-element tet4
+solidFake=$work/fake-solid-run
+rm -rf "$solidFake"; mkdir -p "$solidFake/mesh/solid"
+echo "hydrofoil meshes (2026-12-07T00:00:00Z): preset=fine tc=0.10 cli=0.5 meanline=a08 fluid-mesh=cgrid" > "$solidFake/mesh/mesh-summary.txt"
+check --solid-mesh-from "$solidFake"                       # no foil-tet10.msh there
+touch "$solidFake/mesh/solid/foil-tet10.msh"
+check --solid-mesh-from "$solidFake" --mesh-from "$fake"   # t/c 0.10 against the run's 0.12
+check --solid-mesh-from "$solidFake" --tc 0.10 --cli 0.4   # C_Li 0.5 against 0.4
+check --solid-mesh-from "$solidFake" --restart
+check --solid-mesh-from "$solidFake" --solid-element hex20 --tc 0.10   # no foil-hex20.msh there
 # --init-from a case without a reconstructed solved time (decomposed only): refused up front
 decomposed=$work/decomposed-case
 rm -rf "$decomposed"; mkdir -p "$decomposed/constant/polyMesh" "$decomposed/system" "$decomposed/processor0/900"
@@ -90,7 +103,8 @@ dir=$work/run
 rm -rf "$dir"; mkdir -p "$dir"; cp -r "$FSI_ROOT/cases/hydrofoil/." "$dir/"
 before=$(cd "$dir" && find . | sort | md5sum)
 if ! (cd "$dir" && ./run.sh --check-only --material baseline --scheme linearUpwind --root-wall slip \
-        --oscillation-window 20 --simple-acceleration anderson:5 --coupling-band-factor 0 > out.txt 2> err.txt); then
+        --oscillation-window 20 --simple-acceleration anderson:5 --coupling-band-factor 0 \
+        --solid-element hex20 > out.txt 2> err.txt); then
     echo "FAIL: run.sh --check-only with valid options: non-zero exit"; cat "$dir/err.txt"; fail=1
 elif [ "$(cd "$dir" && rm out.txt err.txt && find . | sort | md5sum)" != "$before" ]; then
     echo "FAIL: run.sh --check-only wrote into the case folder"; fail=1
