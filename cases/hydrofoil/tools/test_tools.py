@@ -23,6 +23,7 @@ import iterationBand  # noqa: E402
 import mshinfo  # noqa: E402
 import sectionShape  # noqa: E402
 import solveRunTime  # noqa: E402
+import spanwiseLift  # noqa: E402
 
 
 def _foamList(rows, fmt):
@@ -394,6 +395,73 @@ class SectionShape(unittest.TestCase):
             with self.assertRaises(SystemExit) as e:
                 sectionShape.main([path, "--stations", "0.05", "--half-width", "1e-6"])
             self.assertIn("--half-width", str(e.exception))
+
+
+class SpanwiseLift(unittest.TestCase):
+    """A flat plate y = 0 from z = 0 to 0.1 m under a pressure linear in z: the lift outboard of
+    each station and the centre of lift are known exactly, whatever the faces' spanwise rows."""
+
+    def _plate(self, path, rows, p_of_z, rho):
+        # quads (x 0..0.05) in uneven spanwise rows, normals -y (out of the fluid above, into
+        # the plate), each face's p the exact mean of p_of_z over the face
+        edges = np.concatenate([[0.0], np.sort(rows), [0.1]])
+        pts, conn, offs, ps = [], [], [], []
+        for z0, z1 in zip(edges[:-1], edges[1:]):
+            k = len(pts)
+            pts += [(0, 0, z0), (0.05, 0, z0), (0.05, 0, z1), (0, 0, z1)]
+            conn += [k, k + 1, k + 2, k + 3]
+            offs.append(len(conn))
+            ps.append(p_of_z(0.5 * (z0 + z1)) / rho)   # kinematic, linear in z: its mean
+        with open(path, "w") as f:
+            f.write("<VTKFile type='PolyData'><PolyData><Piece>\n<CellData>\n")
+            f.write("<DataArray type='Float32' Name='p' format='ascii'>%s</DataArray>\n"
+                    % " ".join("%.17g" % v for v in ps))
+            f.write("</CellData><Points>\n<DataArray type='Float32' Name='Points' "
+                    "NumberOfComponents='3' format='ascii'>%s</DataArray>\n</Points><Polys>\n"
+                    % " ".join("%.17g" % c for q in pts for c in q))
+            f.write("<DataArray type='Int32' Name='connectivity' format='ascii'>%s</DataArray>\n"
+                    % " ".join(map(str, conn)))
+            f.write("<DataArray type='Int32' Name='offsets' format='ascii'>%s</DataArray>\n"
+                    % " ".join(map(str, offs)))
+            f.write("</Polys></Piece></PolyData></VTKFile>\n")
+
+    def test_linear_pressure_exact(self):
+        rho, p0, p1 = 998.2, 100.0, 300.0              # p [Pa] = p0 + (p1 - p0) z / 0.1
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "foil.vtp")
+            self._plate(path, [0.013, 0.031, 0.0495, 0.077], lambda z: p0 + (p1 - p0) * z / 0.1, rho)
+            fy, zlo, zhi = spanwiseLift.face_forces(*spanwiseLift.read_patch(path), rho)
+            # area vectors (0, -A, 0) as the quads are ordered: F_y = -p A, lift = -F_y = p A
+            self.assertAlmostEqual(-fy.sum(), 0.05 * 0.1 * 0.5 * (p0 + p1), delta=1e-9)
+            lift = spanwiseLift.lift_outboard(fy, zlo, zhi, np.array([0.0, 0.05, 0.1]))
+            # spreading a face's force evenly over its row is exact at the row edges and, within a
+            # row, linear: outboard of 0.05 (inside the row 0.0495..0.077) the error is below
+            # (p1 - p0) / 0.1 x 0.05 x 0.0275^2 / 8
+            exact = lambda z: 0.05 * ((p0 * (0.1 - z)) + (p1 - p0) / 0.1 * (0.1 ** 2 - z ** 2) / 2)
+            self.assertAlmostEqual(lift[0], exact(0.0), delta=1e-9)
+            self.assertAlmostEqual(lift[1], exact(0.05), delta=(p1 - p0) / 0.1 * 0.05 * 0.0275 ** 2 / 8)
+            self.assertAlmostEqual(lift[2], 0.0, delta=1e-12)
+            out = io.StringIO()
+            with redirect_stdout(out):
+                spanwiseLift.main([path, "--step", "0.05"])
+            total = re.search(r"pressure lift ([-0-9.e]+) N", out.getvalue()).group(1)
+            self.assertAlmostEqual(float(total), exact(0.0), delta=1e-5)
+            # a uniform pressure: the centre of lift is mid-span, whatever the rows
+            self._plate(path, [0.013, 0.031, 0.0495, 0.077], lambda z: p0, rho)
+            out = io.StringIO()
+            with redirect_stdout(out):
+                spanwiseLift.main([path])
+            zc = re.search(r"centre z_c ([-0-9.e]+) m", out.getvalue()).group(1)
+            self.assertAlmostEqual(float(zc), 0.05, delta=1e-5)
+
+    def test_missing_pressure_is_refused(self):
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, "foil.vtp")
+            with open(path, "w") as f:
+                f.write("<VTKFile><PolyData><Piece></Piece></PolyData></VTKFile>\n")
+            with self.assertRaises(SystemExit) as e:
+                spanwiseLift.read_patch(path)
+            self.assertIn("spanwiseLift.py", str(e.exception))
 
 
 if __name__ == "__main__":
