@@ -33,6 +33,12 @@ converged = 1. When all three folders hold a shape check (shape-baseline/shape.c
 cases/hydrofoil/tools/shapeCheck.sh: the accepted shape solved on to convergence), its lift and
 drag are two more quantities, shape_lift_N@t=0 and shape_drag_N@t=0 (settled when shape.csv
 says converged = 1): the coupled loads without the coupled solves' fluid iteration error.
+When all three folders hold the accepted level's interface displacement
+(results/baseline/interface/level_0000.csv), the twist of the section at z = 0.09 m fitted to it
+(cases/hydrofoil/tools/sectionShape.py) is one more quantity, section_twist_deg@t=0: the tip
+AOA of the two tip watch points carries the local deformation of the mesh's tip corners (2 %
+between the Tet10 and Hex20 foils at the same section twist: cases/hydrofoil/README.md, "The
+structure's share of the coupled mesh study").
 
 Every row also gets range_uncertainty_pct: half the spread of the three values over |fine|, in
 percent, the uncertainty estimate for oscillatory convergence (Stern et al., J. Fluids Eng. 123,
@@ -49,7 +55,10 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(1, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "cases",
+                                "hydrofoil", "tools"))
 import gci  # noqa: E402
+import sectionShape  # noqa: E402
 from model_csv import write_model_rows  # noqa: E402
 
 TIMES = (0.0, 50.0, 360.0, 3600.0)
@@ -118,6 +127,23 @@ def steady_run(folder):
         fail(f"{history}: column tip_aoa_deg, tip_le_uy, tip_te_uy, Fy or Fx missing or not a "
              f"number ({e})")
     return fluid_cells(summary), values, r.get("converged") == "1"
+
+
+SECTION_STATION, SECTION_HALF_WIDTH = 0.09, 2.5e-3   # [m]
+
+
+def section_twist(folder):
+    """{section_twist_deg@t=0} of FOLDER's accepted interface displacement, or None when it has
+    no results/baseline/interface/level_0000.csv."""
+    path = os.path.join(folder, "results", "baseline", "interface", "level_0000.csv")
+    if not os.path.isfile(path):
+        return None
+    points, disp = sectionShape.read_interface(path)
+    try:
+        fit = sectionShape.section_shape(points, disp, SECTION_STATION, SECTION_HALF_WIDTH)
+    except ValueError as e:
+        fail(f"{path}: {e}")
+    return {"section_twist_deg@t=0": fit["twist_deg"]}
 
 
 def shape_check(folder):
@@ -199,6 +225,10 @@ def main(argv):
         runs = [rigid_run(f) for f in folders]
     elif steady:
         runs = [steady_run(f) for f in folders]
+        twists = [section_twist(f) for f in folders]
+        if all(twists):
+            for (_, values, _), twist in zip(runs, twists):
+                values.update(twist)
         shapes = [shape_check(f) for f in folders]
         if all(shapes):
             for (_, values, _), (shape_values, _) in zip(runs, shapes):

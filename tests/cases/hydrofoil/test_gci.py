@@ -163,9 +163,10 @@ class SteadyGciTest(unittest.TestCase):
 
     CELLS = (276336, 595390, 1277256)
 
-    def make_run(self, root, name, cells, converged=1, shape_converged=None):
+    def make_run(self, root, name, cells, converged=1, shape_converged=None, interface=False):
         """shape_converged 0 or 1: also a shape check (shape-baseline/shape.csv) whose lift
-        follows 1.25 + 50 h^2 and drag 0.35 + 10 h^2."""
+        follows 1.25 + 50 h^2 and drag 0.35 + 10 h^2; interface: also the accepted interface
+        displacement, a beam's motion whose twist at z = 0.09 m is -2.1 - 80 h^2 deg."""
         folder = os.path.join(root, name)
         os.makedirs(os.path.join(folder, "results", "baseline"))
         os.makedirs(os.path.join(folder, "mesh"))
@@ -179,6 +180,19 @@ class SteadyGciTest(unittest.TestCase):
             f.write("0,0,%d,%.15g,%.15g,%.15g,%.15g,%.15g\n"
                     % (converged, 0.36 + 20.0 * h2, -(1.3 + 60.0 * h2), -defl + 1e-3, -defl - 1e-3,
                        -2.6 - 100.0 * h2))
+        if interface:
+            import math
+            twist = math.radians(-2.1 - 80.0 * h2) / 0.09       # rate [rad/m], linear in z
+            os.makedirs(os.path.join(folder, "results", "baseline", "interface"))
+            with open(os.path.join(folder, "results", "baseline", "interface",
+                                   "level_0000.csv"), "w") as f:
+                f.write("# level 0 time 0 s\nx,y,z,ux,uy,uz,fx,fy,fz\n")
+                for i in range(600):   # points on the foil's box, spread in x, y and z
+                    x, y, z = 0.356 + 0.05 * ((i * 0.618) % 1), 0.006 * ((i * 0.414) % 1) - 0.003, \
+                        0.1 * ((i * 0.3819) % 1)
+                    theta = twist * z
+                    f.write("%.17g,%.17g,%.17g,%.17g,%.17g,0,0,0,0\n"
+                            % (x, y, z, -theta * y, -0.004 * (z / 0.1) ** 2 + theta * (x - 0.3685)))
         if shape_converged is not None:
             os.makedirs(os.path.join(folder, "shape-baseline"))
             with open(os.path.join(folder, "shape-baseline", "shape.csv"), "w") as f:
@@ -222,6 +236,31 @@ class SteadyGciTest(unittest.TestCase):
             subprocess.run([sys.executable, script, "--steady", "--model", "m", "--out", out] + runs,
                            check=True, capture_output=True)
             self.assertEqual(len(list(csv.DictReader(open(out)))), 4)
+
+    def test_section_twist_quantity(self):
+        import csv
+        import subprocess
+        import tempfile
+        script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..",
+                              "scripts", "history_gci.py")
+        with tempfile.TemporaryDirectory() as root:
+            runs = [self.make_run(root, n, c, interface=True)
+                    for n, c in zip(("coarse", "medium", "fine"), self.CELLS)]
+            out = os.path.join(root, "gci.csv")
+            subprocess.run([sys.executable, script, "--steady", "--model", "m", "--out", out] + runs,
+                           check=True, capture_output=True)
+            rows = {r["quantity"]: r for r in csv.DictReader(open(out))}
+            q = rows["section_twist_deg@t=0"]
+            for level, cells in zip(("coarse", "medium", "fine"), self.CELLS):
+                self.assertAlmostEqual(float(q[level]), -2.1 - 80.0 * cells ** (-2.0 / 3.0), places=5)
+            self.assertAlmostEqual(float(q["observed_order"]), 2.0, places=3)
+            self.assertAlmostEqual(float(q["extrapolated"]), -2.1, places=4)
+            # one level without its interface file: no section twist
+            runs[0] = self.make_run(root, "coarse-plain", self.CELLS[0])
+            subprocess.run([sys.executable, script, "--steady", "--model", "m", "--out", out] + runs,
+                           check=True, capture_output=True)
+            self.assertNotIn("section_twist_deg@t=0",
+                             {r["quantity"] for r in csv.DictReader(open(out))})
 
     def test_second_order_sequence_and_merge(self):
         import csv
