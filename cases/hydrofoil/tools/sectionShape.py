@@ -46,7 +46,10 @@ def read_interface(path):
     need = ["x", "y", "z", "ux", "uy", "uz"]
     if not rows or any(k not in rows[0] for k in need):
         fail(f"{path}: needs the columns {','.join(need)} (an interface/level_NNNN.csv of solid-app)")
-    a = np.array([[float(r[k]) for k in need] for r in rows])
+    try:
+        a = np.array([[float(r[k]) for k in need] for r in rows])
+    except (TypeError, ValueError) as e:
+        fail(f"{path}: a row of {','.join(need)} is not all numbers ({e})")
     return a[:, :3], a[:, 3:]
 
 
