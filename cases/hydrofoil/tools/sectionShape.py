@@ -32,7 +32,8 @@ X_QC, CHORD = 0.3685, 0.05
 
 
 def fail(message):
-    sys.exit("error: sectionShape.py: " + message)
+    print("error: sectionShape.py: " + message, file=sys.stderr)
+    sys.exit(2)
 
 
 def read_interface(path):

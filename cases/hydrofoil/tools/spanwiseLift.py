@@ -26,7 +26,8 @@ import numpy as np
 
 
 def fail(message):
-    sys.exit("error: spanwiseLift.py: " + message)
+    print("error: spanwiseLift.py: " + message, file=sys.stderr)
+    sys.exit(2)
 
 
 def read_patch(path):

@@ -392,9 +392,12 @@ class SectionShape(unittest.TestCase):
             fields = dict(kv.split("=") for kv in out.getvalue().split()[1:])
             self.assertAlmostEqual(float(fields["twist_deg"]), math.degrees(-0.015), delta=1e-5)
             self.assertAlmostEqual(float(fields["camber_mm"]), 0.0, delta=1e-5)
-            with self.assertRaises(SystemExit) as e:
+            err = io.StringIO()
+            with self.assertRaises(SystemExit) as e, redirect_stderr(err):
                 sectionShape.main([path, "--stations", "0.05", "--half-width", "1e-6"])
-            self.assertIn("--half-width", str(e.exception))
+            self.assertEqual(e.exception.code, 2)
+            self.assertEqual(len(err.getvalue().strip().splitlines()), 1)
+            self.assertIn("--half-width", err.getvalue())
 
 
 class SpanwiseLift(unittest.TestCase):
@@ -459,9 +462,11 @@ class SpanwiseLift(unittest.TestCase):
             path = os.path.join(d, "foil.vtp")
             with open(path, "w") as f:
                 f.write("<VTKFile><PolyData><Piece></Piece></PolyData></VTKFile>\n")
-            with self.assertRaises(SystemExit) as e:
+            err = io.StringIO()
+            with self.assertRaises(SystemExit) as e, redirect_stderr(err):
                 spanwiseLift.read_patch(path)
-            self.assertIn("spanwiseLift.py", str(e.exception))
+            self.assertEqual(e.exception.code, 2)
+            self.assertIn("spanwiseLift.py", err.getvalue())
 
 
 if __name__ == "__main__":
