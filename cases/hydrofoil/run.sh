@@ -228,8 +228,9 @@ read -r meshKind defaultFlow defaultAlgorithm < <("$FSI_ROOT/cases/hydrofoil/too
     die "--fluid-mesh $fluidMesh: the fluid mesh in $(dirname "$(dirname "$summary")") is $meshKind (leave --fluid-mesh out with --mesh-from or --restart)"
 fluidMesh=$meshKind
 if [ -n "$solidFrom" ]; then
-  # the structure's section must be this run's: t/c and C_Li of its mesh summary's first line
-  # against the --mesh-from mesh's (or --tc / --cli for a mesh made now)
+  # section KEY SUMMARY: KEY's value (preset, tc, cli) on a mesh summary's first line (mesh.sh's).
+  # The structure's section must be this run's: t/c and C_Li against the --mesh-from mesh's
+  # (or --tc / --cli for a mesh made now)
   section() { head -n 1 "$2" | tr ' ' '\n' | sed -n "s/^$1=//p"; }
   for k in tc cli; do
     theirs=$(section $k "$solidFrom/mesh/mesh-summary.txt")
@@ -325,7 +326,7 @@ fi
 if [ -n "$solidFrom" ]; then
   rm -rf "$run/mesh/solid" && cp -r "$solidFrom/mesh/solid" "$run/mesh/solid"
   sed -i '/^foil-[a-z0-9-]*\.msh: /d' "$run/mesh/mesh-summary.txt"
-  { echo "solid meshes from $solidFrom ($(head -n 1 "$solidFrom/mesh/mesh-summary.txt" | tr ' ' '\n' | grep '^preset='))"
+  { echo "solid meshes from $solidFrom (preset=$(section preset "$solidFrom/mesh/mesh-summary.txt"))"
     grep '^foil-[a-z0-9-]*\.msh: ' "$solidFrom/mesh/mesh-summary.txt" || true; } >> "$run/mesh/mesh-summary.txt"
   log "structural meshes from $solidFrom"
 fi
