@@ -7,7 +7,7 @@
 #       [--scheme upwind|linearUpwind] [--np 2] [--tolerance 1e-5] [--max-iterations 3000]
 #       [--init-from RUN] [--algorithm simple] [--band-tolerance B] [--band-mean-tolerance M]
 #       [--root-wall wall|slip] [--write-interval 200] [--resume] [--shape-from CASE]
-#       [--check-only]
+#       [--shape-displacement CSV] [--check-only]
 #
 #   --np N               fluid ranks (default 2; with --shape-from or --resume: the decomposition
 #                        of the source case, which a given --np must match for --shape-from)
@@ -61,6 +61,16 @@
 #                        one accepted in the mean it gives the frozen shape's steady or
 #                        long-window mean loads. Not with --init-from or --resume (a resumed
 #                        shape run keeps its mesh: --resume alone, tools/shapeCheck.sh --resume)
+#   --shape-displacement CSV  solve the foil in the shape of a structural displacement: CSV is
+#                        an interface CSV of solid-app (RUN/results/MODEL/interface/level_NNNN.csv,
+#                        any preset's run), interpolated onto this mesh's foil points
+#                        (tools/foilMotion.py --from-interface: a local linear fit to the 12
+#                        nearest nodes) and taken into the volume by the case's own motion
+#                        solver (moveDynamicMesh); checkMesh must pass on the moved mesh. One
+#                        coupled level's shape so replays on the fluid mesh of any preset,
+#                        without the coupling. The flow starts from rest, from --init-from, or
+#                        with --shape-from CASE from CASE's flow (CASE's moved mesh is then
+#                        replaced). Not with --resume
 #   --check-only         validate the options' values and exit: 0, or 2 with the one-line error;
 #                        writes nothing and needs neither --mesh, --out nor fluid-app (blcheck.sh
 #                        calls it before it meshes)
@@ -78,7 +88,7 @@
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 mesh="" out="" flow=laminar scheme=upwind np=2 tol=1e-5 maxIt=3000 initFrom="" algorithm="" band=0 bandMean=0 rootWall=wall checkOnly=0
-writeInterval=200 resume=0 shapeFrom=""
+writeInterval=200 resume=0 shapeFrom="" shapeDisplacement=""
 given=" "   # the model and --np options given (variable names), for --shape-from and --resume
 die() { echo "error: rigid.sh: $*" >&2; exit 2; }
 # fraction VALUE: VALUE is 0 or a number in (0, 1)
@@ -100,6 +110,7 @@ while [ $# -gt 0 ]; do
         --write-interval) writeInterval="$2"; shift 2 ;;
         --resume) resume=1; shift ;;
         --shape-from) shapeFrom="$2"; shift 2 ;;
+        --shape-displacement) shapeDisplacement="$2"; shift 2 ;;
         --check-only) checkOnly=1; shift ;;
         -h|--help) sed -n '3,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) die "unknown option '$1' (see --help)" ;;
@@ -145,6 +156,13 @@ takeModel() {
 }
 [ "$resume" = 1 ] || [ -z "$initFrom" ] || { [ -f "$initFrom/rigid.csv" ] && [ -d "$initFrom/case" ]; } ||
     die "--init-from '$initFrom' is not a finished rigid.sh run (no rigid.csv / case)"
+if [ -n "$shapeDisplacement" ]; then
+    [ "$resume" = 0 ] || die "--shape-displacement builds a new case: not with --resume (a resumed solve keeps its mesh)"
+    [ -f "$shapeDisplacement" ] ||
+        die "--shape-displacement '$shapeDisplacement': no such file; give a solid-app interface CSV, e.g. RUN/results/baseline/interface/level_0000.csv"
+    head -2 "$shapeDisplacement" | grep -q '^x,y,z,ux,uy,uz' ||
+        die "--shape-displacement '$shapeDisplacement' is not a solid-app interface CSV (no header x,y,z,ux,uy,uz...)"
+fi
 if [ -n "$shapeFrom" ]; then
     [ "$resume" = 0 ] && [ -z "$initFrom" ] ||
         die "--shape-from starts from the coupled case's flow: not with --init-from or --resume"
@@ -216,6 +234,49 @@ takeShape() {
     log "initial mesh and flow: the shape of $src ($n field files)"
 }
 
+fd() { foamDictionary "$case/$1" -entry "$2" -set "$3" > /dev/null; }
+# replayShape CSV: the foil moved to the displacement of the interface CSV (foilMotion.py
+# --from-interface on each rank's part, then moveDynamicMesh with the case's motion solver): the
+# moved points become the initial mesh (0/polyMesh/points, as takeShape's; a moved mesh taken by
+# takeShape is dropped first, so that the motion starts from the mesh's own points), checkMesh
+# must pass; the fields are converted to ASCII on the way, controlDict and 0/pointDisplacement
+# are restored
+replayShape() {
+    local csv=$1 dirs=(.) d r lib par=() run=()
+    [ "$np" -gt 1 ] && { dirs=(); for ((r = 0; r < np; r++)); do dirs+=("processor$r"); done; par=(-parallel); run=(mpirun --oversubscribe -np "$np"); }
+    lib="$(dirname "$(command -v fluid-app)")/../lib"
+    [ -f "$lib/libfsiMeshMotion.so" ] || die "--shape-displacement: libfsiMeshMotion.so not found next to fluid-app ($lib)"
+    cp "$case/system/controlDict" "$case/system/controlDict.rigid"
+    fd system/controlDict writeFormat ascii
+    fd system/controlDict writePrecision 17
+    fd system/controlDict endTime 1
+    fd system/controlDict writeInterval 1
+    foamDictionary "$case/system/controlDict" -entry functions -remove > /dev/null
+    for d in "${dirs[@]}"; do rm -f "$case/$d/0/polyMesh/points"; done
+    ( cd "$case" && "${run[@]}" foamFormatConvert "${par[@]}" -constant > log.foamFormatConvert.shape 2>&1 ) ||
+        die "--shape-displacement: foamFormatConvert failed (see $case/log.foamFormatConvert.shape)"
+    for d in "${dirs[@]}"; do
+        cp "$case/$d/0/pointDisplacement" "$case/$d/0/pointDisplacement.rigid"
+        /usr/bin/python3 "$here/tools/foilMotion.py" "$case/$d" --from-interface "$csv" >> "$case/log.foilMotion" ||
+            die "--shape-displacement: foilMotion.py failed on $case/$d (message above)"
+    done
+    ( cd "$case" && LD_LIBRARY_PATH="$lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" \
+        "${run[@]}" moveDynamicMesh "${par[@]}" > log.moveDynamicMesh 2>&1 ) ||
+        die "--shape-displacement: moveDynamicMesh failed (see $case/log.moveDynamicMesh)"
+    ( cd "$case" && "${run[@]}" checkMesh "${par[@]}" -time 1 > log.checkMesh.shape 2>&1 ) || true
+    grep -q "^Mesh OK" "$case/log.checkMesh.shape" ||
+        die "--shape-displacement: the moved mesh fails checkMesh ($(grep -m1 '\*\*\*' "$case/log.checkMesh.shape" | tr -s ' '); $case/log.checkMesh.shape)"
+    for d in "${dirs[@]}"; do
+        mkdir -p "$case/$d/0/polyMesh"
+        mv "$case/$d/1/polyMesh/points" "$case/$d/0/polyMesh/points"
+        mv "$case/$d/0/pointDisplacement.rigid" "$case/$d/0/pointDisplacement"
+        rm -rf "${case:?}/$d/1"
+    done
+    mv "$case/system/controlDict.rigid" "$case/system/controlDict"
+    log "initial mesh: the foil moved to the displacement of $csv; checkMesh: Mesh OK"
+    sed 's/^foilMotion: /    /' "$case/log.foilMotion"
+}
+
 if [ "$resume" = 1 ]; then
     for f in log.fluid-app time.txt; do [ ! -f "$case/$f" ] || mv "$case/$f" "$case/$f.before-$startIt"; done
     rm -f "$out/rigid.csv"
@@ -230,8 +291,8 @@ else
     [ "$rootWall" = wall ] || log "root wall z = 0: slip (tools/rootWall.sh)"
     [ -z "$initFrom" ] || log "initial fields mapped from $initFrom"
     [ -z "$shapeFrom" ] || takeShape "$(cd "$shapeFrom" && pwd)"
+    [ -z "$shapeDisplacement" ] || replayShape "$(cd "$(dirname "$shapeDisplacement")" && pwd)/${shapeDisplacement##*/}"
 fi
-fd() { foamDictionary "$case/$1" -entry "$2" -set "$3" > /dev/null; }
 fd system/fsiDict rigid/maxIterations "$((maxIt - startIt))"
 fd system/fsiDict rigid/writeInterval "$writeInterval"
 fd system/fsiDict rigid/forceTolerance "$tol"

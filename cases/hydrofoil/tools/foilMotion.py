@@ -4,6 +4,7 @@
 
     foilMotion.py CASE [--tip-deflection 0.003] [--tip-twist-deg -8] [--time 0]
                        [--bending beam|shear] [--roughness AMP] [--from FILE]
+                       [--from-interface CSV]
 
 Writes CASE/TIME/pointDisplacement with the foil patch as `fixedValue` and a nonuniform value
 list: a bending deflection w(z) = d_y = -tip_deflection (z / span)^2 (towards the suction side,
@@ -23,6 +24,13 @@ pointDisplacement of a coupled run's level on the same mesh (its internalField a
 points): a coupled level's motion replayed on a fresh copy of the mesh, e.g. to see which part of
 the mapped displacement a mesh-quality failure comes from (cases/hydrofoil/README.md, "The tip
 cells and the mapped displacement's kink").
+--from-interface CSV takes it from a solid-app interface CSV instead (RUN/results/MODEL/interface/
+level_NNNN.csv: the structure's wetted nodes x,y,z with their displacement ux,uy,uz), on any
+fluid mesh of the same foil: each foil point gets the value at its position of a local linear
+least-squares fit to the nearest NEIGHBOURS (12) nodes (exact for a displacement linear in
+x, y, z; a node farther than 2 mm from a foil point is refused as another geometry). One coupled
+level's structural shape can so be imposed on the fluid meshes of another preset (rigid.sh
+--shape-displacement).
 Values are in the order of the patch's mesh points (points in order of first appearance in the
 patch faces), which is OpenFOAM's PrimitivePatch::meshPoints order. The mesh must be ASCII
 (foamFormatConvert with writeFormat ascii converts a binary one).
@@ -36,6 +44,8 @@ import sys
 import numpy as np
 
 X_QC, SPAN = 0.3685, 0.100
+NEIGHBOURS = 12        # interface nodes per local linear fit (--from-interface)
+MAX_GAP = 2.0e-3       # m: a foil point farther than this from every node: another geometry
 
 
 def _listBody(text):
@@ -101,6 +111,26 @@ def displacement(pts, tipDeflection, tipTwistDeg, bending="beam"):
     return np.column_stack([dx, dy, dz])
 
 
+def interpolateLinear(nodes, values, targets, neighbours=NEIGHBOURS):
+    """values (n, 3) given at nodes (n, 3), evaluated at targets (m, 3): at each target the
+    value of a linear least-squares fit to its nearest nodes (coordinates scaled by the
+    farthest of them; singular values below 1e-6 of the largest dropped, so nodes on a plane
+    give the fit within that plane). Returns (values at targets, largest nearest-node
+    distance)."""
+    from scipy.spatial import cKDTree
+    if len(targets) == 0:
+        return np.zeros((0, 3)), 0.0
+    k = min(neighbours, len(nodes))
+    if k < 4:
+        raise RuntimeError(f"foilMotion.py: {len(nodes)} interface nodes: a linear fit needs 4")
+    dist, idx = cKDTree(nodes).query(targets, k=k)
+    rel = nodes[idx] - targets[:, None, :]                       # (m, k, 3)
+    scale = np.maximum(dist[:, -1], 1e-300)[:, None, None]
+    A = np.concatenate([np.ones(rel.shape[:2] + (1,)), rel / scale], axis=2)   # (m, k, 4)
+    P = np.linalg.pinv(A, rcond=1e-6)                            # (m, 4, k)
+    return np.einsum("mk,mkc->mc", P[:, 0, :], values[idx]), float(dist[:, 0].max())
+
+
 def main(argv):
     p = argparse.ArgumentParser()
     p.add_argument("case")
@@ -112,7 +142,11 @@ def main(argv):
     p.add_argument("--roughness", type=float, default=0.0)
     p.add_argument("--from", dest="source", default="",
                    help="pointDisplacement (ASCII, same mesh) whose foil values to impose")
+    p.add_argument("--from-interface", dest="interface", default="",
+                   help="solid-app interface CSV (x,y,z,ux,uy,uz) interpolated onto the foil")
     a = p.parse_args(argv)
+    if a.source and a.interface:
+        raise RuntimeError("foilMotion.py: --from and --from-interface exclude each other")
     mesh = os.path.join(a.case, "constant", "polyMesh")
     start, count = readPatch(os.path.join(mesh, "boundary"), a.patch)
     faces = readFaces(os.path.join(mesh, "faces"), start, count)
@@ -126,6 +160,16 @@ def main(argv):
                                f"the {len(allPoints)} points of {mesh} (another mesh, or a "
                                f"decomposed part? reconstructPar it first)")
         d = given[order]
+    elif a.interface:
+        from sectionShape import read_interface
+        nodes, values = read_interface(a.interface)
+        d, gap = interpolateLinear(nodes, values, pts)
+        if gap > MAX_GAP:
+            raise RuntimeError(f"foilMotion.py: --from-interface {a.interface}: a foil point of "
+                               f"{a.case} is {gap * 1e3:.3g} mm from the nearest interface node "
+                               f"(> {MAX_GAP * 1e3:g} mm): not this foil's interface")
+        print(f"foilMotion: {len(nodes)} interface nodes of {a.interface}, nearest node within "
+              f"{gap * 1e6:.1f} um of every foil point")
     else:
         d = displacement(pts, a.tip_deflection, a.tip_twist_deg, a.bending)
     if a.roughness:
@@ -143,7 +187,8 @@ def main(argv):
              f"        value           nonuniform List<vector> {len(d)}\n(\n{values}\n);\n    }}")
     with open(target, "w") as f:
         f.write(text[:i.start()] + entry + text[j + 1:])
-    print(f"foilMotion: {len(d)} foil points, max |d| {np.linalg.norm(d, axis=1).max():.4e} m "
+    largest = np.linalg.norm(d, axis=1).max() if len(d) else 0.0
+    print(f"foilMotion: {len(d)} foil points, max |d| {largest:.4e} m "
           f"-> {target}")
     return 0
 
