@@ -117,7 +117,8 @@ def interpolateLinear(nodes, values, targets, neighbours=NEIGHBOURS):
     (1 - (r/R)^2)^2, where R is 1.5 times the distance to its NEIGHBOURS-th nearest node (a
     continuous function of the target's position, and a weight that vanishes where a node
     enters or leaves: the result has no jumps between neighbouring targets, which would fold
-    the um-thin wall cells). Coordinates are scaled by R, and directions the nodes hardly span
+    the um-thin wall cells). The fit is about the nodes' weighted centre, coordinates scaled by
+    R, and directions the nodes hardly span
     (singular values below 1e-2 of the largest: across a gently curved surface) are left out
     of the fit, so that the value is carried unchanged along the surface normal to a target
     off the nodes' surface (0.17 mm near the trailing edge, fluid against solid mesh), instead
@@ -135,11 +136,15 @@ def interpolateLinear(nodes, values, targets, neighbours=NEIGHBOURS):
     radius = np.minimum(1.5 * dist[:, k - 1], dist[:, -1] if kMax < len(nodes) else np.inf)
     radius = np.maximum(radius, 1e-300)
     w = np.clip(1.0 - (dist / radius[:, None]) ** 2, 0.0, None) ** 2            # (m, kMax)
-    rel = (nodes[idx] - targets[:, None, :]) / radius[:, None, None]
+    # the fit a + b (x - c) about the stencil's weighted centre c: the constant is then
+    # orthogonal to the slopes, and a slope left out (b along the normal = 0) moves nothing
+    centre = np.einsum("mk,mkc->mc", w, nodes[idx]) / w.sum(axis=1)[:, None]
+    rel = (nodes[idx] - centre[:, None, :]) / radius[:, None, None]
     A = np.concatenate([np.ones(rel.shape[:2] + (1,)), rel], axis=2)            # (m, kMax, 4)
     sw = np.sqrt(w)[:, :, None]
     P = np.linalg.pinv(A * sw, rcond=1e-2)                                      # (m, 4, kMax)
-    row = P[:, 0, :] * sw[:, :, 0]
+    at = (targets - centre) / radius[:, None]                                   # (m, 3)
+    row = (P[:, 0, :] + np.einsum("mc,mck->mk", at, P[:, 1:, :])) * sw[:, :, 0]
     return np.einsum("mk,mkc->mc", row, values[idx]), float(dist[:, 0].max())
 
 

@@ -176,6 +176,88 @@ class FoilMotion(unittest.TestCase):
             with self.assertRaises(RuntimeError):
                 foilMotion.main([case, "--from", source])
 
+    @staticmethod
+    def foilLikeSurface(n, seed):
+        """n points on an elliptic cylinder (chord 50 mm, thickness 6 mm) over the 0.1 m span."""
+        rng = np.random.default_rng(seed)
+        t, z = rng.uniform(0, 2 * np.pi, n), rng.uniform(0.0, 0.1, n)
+        return np.column_stack([0.3685 + 0.025 * np.cos(t), 0.003 * np.sin(t), z])
+
+    def test_interface_fit_reproduces_linear_fields(self):
+        rng = np.random.default_rng(3)
+        B = np.array([[0.1, -0.2, 0.05], [0.3, 0.01, -0.02], [0.02, 0.04, 0.5]])
+        a = np.array([1e-3, -2e-3, 5e-4])
+        # nodes spanning three directions: exact
+        nodes, targets = rng.uniform(0, 0.01, (4000, 3)), rng.uniform(0.002, 0.008, (300, 3))
+        d, gap = foilMotion.interpolateLinear(nodes, a + nodes @ B, targets)
+        np.testing.assert_allclose(d, a + targets @ B, rtol=0, atol=1e-15)
+        self.assertLess(gap, 1e-3)
+        # nodes and targets on one plane (the tip face z = 0.1): exact within the plane
+        flat = np.column_stack([rng.uniform(0.36, 0.4, (3000, 2)), np.full(3000, 0.1)])
+        flatTargets = np.column_stack([rng.uniform(0.365, 0.395, (200, 2)), np.full(200, 0.1)])
+        d, _ = foilMotion.interpolateLinear(flat, a + flat @ B, flatTargets)
+        np.testing.assert_allclose(d, a + flatTargets @ B, rtol=0, atol=1e-15)
+
+    def test_interface_fit_of_a_beam_motion_is_close_and_has_no_jumps(self):
+        nodes = self.foilLikeSurface(20000, 1)          # ~0.6 mm node spacing
+        beam = lambda p: foilMotion.displacement(p, 0.005, -2.0, "beam")
+        targets = self.foilLikeSurface(3000, 2)
+        d, _ = foilMotion.interpolateLinear(nodes, beam(nodes), targets)
+        # measured 1.7 um against 5 mm of deflection: the fit's error on the bending curvature
+        self.assertLess(float(np.abs(d - beam(targets)).max()), 5e-6)
+        # along a 2 mm spanwise line of targets 1 um apart, the values change smoothly: a jump
+        # where a node enters or leaves a target's fit would show as a step far above the
+        # field's own slope (< 0.1)
+        line = np.column_stack([np.full(2000, 0.3685 + 0.025 * np.cos(1.0)),
+                                np.full(2000, 0.003 * np.sin(1.0)), 0.05 + 1e-6 * np.arange(2000)])
+        d, _ = foilMotion.interpolateLinear(nodes, beam(nodes), line)
+        self.assertLess(float(np.abs(np.diff(d, axis=0)).max()) / 1e-6, 0.2)
+
+    def test_interface_fit_carries_the_surface_value_along_the_normal(self):
+        # nodes on a gently curved sheet y = x^2 (radius 0.5 m); a field with a strong normal
+        # gradient; a target 0.2 mm off the sheet gets the value at its foot point, not an
+        # extrapolation with a gradient the nodes cannot determine
+        rng = np.random.default_rng(4)
+        xz = rng.uniform(-0.01, 0.01, (5000, 2))
+        nodes = np.column_stack([xz[:, 0], xz[:, 0] ** 2, xz[:, 1]])
+        field = lambda p: np.column_stack([p[:, 1] * 10.0, p[:, 0], p[:, 2]])
+        foot = np.array([[0.001, 1e-6, 0.002]])
+        d, _ = foilMotion.interpolateLinear(nodes, field(nodes), foot + [0.0, 2e-4, 0.0])
+        np.testing.assert_allclose(d, field(foot), rtol=0, atol=2e-6)
+
+    def test_from_interface_writes_the_fitted_values_and_refuses_another_geometry(self):
+        points = DisplacementJumps.POINTS * 1e-3       # a 2 mm x 1 mm patch
+        faces = [[4, 5, 2, 1], [3, 4, 1, 0]]
+        rng = np.random.default_rng(5)
+        nodes = np.column_stack([rng.uniform(-5e-4, 2.5e-3, (400, 2)), rng.uniform(-1e-4, 1e-4, 400)])
+        with tempfile.TemporaryDirectory() as case:
+            writeAsciiCase(case, points, faces)
+            writeAsciiPointVectors(os.path.join(case, "0", "pointDisplacement"), 0 * points, True)
+            csvPath = os.path.join(case, "level_0000.csv")
+
+            def writeCsv(shift):
+                with open(csvPath, "w") as f:
+                    f.write("# level 0 time 0 s\nx,y,z,ux,uy,uz,fx,fy,fz\n")
+                    for x in nodes + shift:
+                        f.write("%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,0,0,0\n"
+                                % (tuple(x) + (0.01 * x[0], 0.02 * x[1] - 1e-4, 3e-5)))
+            writeCsv(0.0)
+            with redirect_stdout(io.StringIO()):
+                self.assertEqual(foilMotion.main([case, "--from-interface", csvPath]), 0)
+            with open(os.path.join(case, "0", "pointDisplacement")) as f:
+                text = f.read()
+            foil = text[text.index("List<vector>", text.index("foil")):]
+            values = np.array([[float(v) for v in r.split()]
+                               for r in re.findall(r"\(([^()]*)\)", foil)[:6]])
+            p = points[[4, 5, 2, 1, 3, 0]]
+            expected = np.column_stack([0.01 * p[:, 0], 0.02 * p[:, 1] - 1e-4, np.full(6, 3e-5)])
+            np.testing.assert_allclose(values, expected, rtol=0, atol=1e-12)
+            writeCsv(np.array([0.0, 0.0, 5e-3]))        # the nodes 5 mm away
+            with self.assertRaisesRegex(RuntimeError, "not this foil's interface"):
+                foilMotion.main([case, "--from-interface", csvPath])
+            with self.assertRaisesRegex(RuntimeError, "exclude each other"):
+                foilMotion.main([case, "--from-interface", csvPath, "--from", csvPath])
+
     def test_twist_is_a_rotation_about_the_quarter_chord(self):
         pts = np.array([[0.356, 0.0, 0.1], [0.406, 0.0, 0.1], [0.3685, 0.0, 0.1]])
         d = foilMotion.displacement(pts, 0.0, -12.0, "beam")
