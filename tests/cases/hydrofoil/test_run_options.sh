@@ -189,6 +189,13 @@ refusedBefore 2 --write-interval rigid.sh --mesh "$fakeMesh" --write-interval -5
 refusedBefore 2 --max-iterations rigid.sh --mesh "$fakeMesh" --max-iterations 50
 refusedBefore 2 --resume rigid.sh --mesh "$fakeMesh" --resume
 refusedBefore 2 --resume blcheck.sh --preset coarse --resume
+# --shape-displacement (a rigid solve in an interface CSV's shape): no such file, a file that is
+# no interface CSV, or with --resume, refused in one line before anything is made
+refusedBefore 2 "--shape-displacement '$work/none.csv': no such file" rigid.sh --mesh "$fakeMesh" --shape-displacement "$work/none.csv"
+printf 'a,b\n1,2\n' > "$work/not-interface.csv"
+refusedBefore 2 "is not a solid-app interface CSV" rigid.sh --mesh "$fakeMesh" --shape-displacement "$work/not-interface.csv"
+printf '# level 0 time 0 s\nx,y,z,ux,uy,uz,fx,fy,fz\n0.37,0,0.05,0,-1e-3,0,0,0,0\n' > "$work/interface.csv"
+refusedBefore 2 "not with --resume" rigid.sh --mesh "$fakeMesh" --resume --shape-displacement "$work/interface.csv"
 # --shape-from (a rigid solve in a coupled run's shape): a case without a moved mesh, one
 # decomposed for other ranks, one with a rank folder lacking the moved mesh, or with --init-from,
 # refused in one line before anything is made
