@@ -61,23 +61,56 @@ def _listBody(text):
     return int(m.group(1)), text[m.end():]
 
 
+def _binaryHeader(raw):
+    """(label dtype, end of the FoamFile header) of a binary OpenFOAM file, or None if ASCII."""
+    head = raw[:4096]
+    h = head.find(b"FoamFile")
+    if h < 0 or not re.search(rb"format\s+binary", head):
+        return None
+    m = re.search(rb"label=(\d+)", head)
+    label = np.dtype("<i8") if m and m.group(1) == b"64" else np.dtype("<i4")
+    return label, raw.index(b"}", h) + 1
+
+
+def _binaryList(raw, pos, dtype, width=1):
+    """(array, position after the list) of the binary list N (...) at or after pos."""
+    m = re.compile(rb"(\d+)\s*\(").search(raw, pos)
+    n, start = int(m.group(1)), m.end()
+    nbytes = n * width * dtype.itemsize
+    a = np.frombuffer(raw[start:start + nbytes], dtype=dtype)
+    return (a.reshape(n, width) if width > 1 else a), start + nbytes + 1
+
+
 def readPoints(path):
-    with open(path) as f:
-        n, body = _listBody(f.read())
+    """The vectors of a points or pointVectorField file (its first list), ASCII or binary."""
+    with open(path, "rb") as f:
+        raw = f.read()
+    binary = _binaryHeader(raw)
+    if binary:
+        return _binaryList(raw, binary[1], np.dtype("<f8"), 3)[0].copy()
+    n, body = _listBody(raw.decode())
     vals = np.array(re.findall(r"\(([^()]*)\)", body)[:n], dtype=object)
     return np.array([[float(v) for v in s.split()] for s in vals])
 
 
 def readFaces(path, start, count):
-    with open(path) as f:
-        n, body = _listBody(f.read())
+    """Faces start .. start + count - 1 of a faces file (faceList ASCII, or binary
+    faceCompactList: the offsets, then the point labels)."""
+    with open(path, "rb") as f:
+        raw = f.read()
+    binary = _binaryHeader(raw)
+    if binary:
+        offsets, pos = _binaryList(raw, binary[1], binary[0])
+        labels, _ = _binaryList(raw, pos, binary[0])
+        return [labels[offsets[i]:offsets[i + 1]].tolist() for i in range(start, start + count)]
+    n, body = _listBody(raw.decode())
     faces = re.findall(r"\d+\s*\(([^()]*)\)", body)
     return [[int(v) for v in s.split()] for s in faces[start:start + count]]
 
 
 def readPatch(boundaryPath, name):
-    with open(boundaryPath) as f:
-        text = f.read()
+    with open(boundaryPath, "rb") as f:
+        text = f.read().decode("latin-1")   # a binary-format boundary is text all the same
     m = re.search(r"\b" + re.escape(name) + r"\s*\{([^}]*)\}", text)
     if not m:
         raise RuntimeError(f"foilMotion.py: patch '{name}' not in {boundaryPath}")
