@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 # SPDX-License-Identifier: GPL-3.0-or-later
 """Checks of tools/forceConvergence.py, tools/iterationBand.py, tools/mshinfo.py, tools/foilMotion.py,
-tools/displacementJumps.py and tools/solveRunTime.py on small synthetic inputs, and of
-tools/mapInitialFields.sh's input checks."""
+tools/foilDisplacement.py, tools/displacementJumps.py, tools/solveRunTime.py, tools/sectionShape.py
+and tools/spanwiseLift.py on small synthetic inputs, and of tools/mapInitialFields.sh's input
+checks."""
 import io
 import math
 import os
@@ -17,6 +18,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import displacementJumps  # noqa: E402
+import foilDisplacement  # noqa: E402
 import foilMotion  # noqa: E402
 import forceConvergence as fc  # noqa: E402
 import iterationBand  # noqa: E402
@@ -549,6 +551,72 @@ class SpanwiseLift(unittest.TestCase):
                 spanwiseLift.read_patch(path)
             self.assertEqual(e.exception.code, 2)
             self.assertIn("spanwiseLift.py", err.getvalue())
+
+
+def _binaryHeader(cls):
+    return (b"FoamFile\n{\n    version 2.0;\n    format binary;\n    class " + cls +
+            b";\n    arch \"LSB;label=32;scalar=64\";\n}\n// * * //\n\n")
+
+
+def writeBinaryPoints(path, points):
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "wb") as f:
+        f.write(_binaryHeader(b"vectorField") + b"%d\n(" % len(points) +
+                np.asarray(points, "<f8").tobytes() + b")\n")
+
+
+def writeBinaryFaces(path, faces):
+    offsets = np.cumsum([0] + [len(f) for f in faces]).astype("<i4")
+    labels = np.array([v for f in faces for v in f], "<i4")
+    with open(path, "wb") as f:
+        f.write(_binaryHeader(b"faceCompactList") + b"%d\n(" % len(offsets) + offsets.tobytes() +
+                b")\n%d\n(" % len(labels) + labels.tobytes() + b")\n")
+
+
+class FoilDisplacement(unittest.TestCase):
+    def test_binary_readers_match_the_ascii_ones(self):
+        points = DisplacementJumps.POINTS * 0.1 + 1e-3
+        faces = [[4, 5, 2, 1], [3, 4, 1, 0]]
+        with tempfile.TemporaryDirectory() as case:
+            writeAsciiCase(case, points, faces)
+            mesh = os.path.join(case, "constant", "polyMesh")
+            asciiFaces = foilMotion.readFaces(os.path.join(mesh, "faces"), 1, 2)
+            writeBinaryPoints(os.path.join(mesh, "points"), points)
+            writeBinaryFaces(os.path.join(mesh, "faces"), [[9, 9, 9]] + faces)
+            np.testing.assert_array_equal(foilMotion.readPoints(os.path.join(mesh, "points")), points)
+            self.assertEqual(foilMotion.readFaces(os.path.join(mesh, "faces"), 1, 2), asciiFaces)
+            self.assertEqual(asciiFaces, faces)
+
+    def test_moved_case_gives_each_foil_point_once_with_its_displacement(self):
+        points = DisplacementJumps.POINTS * 1e-3
+        faces = [[4, 5, 2, 1], [3, 4, 1, 0]]
+        move = lambda p: np.column_stack([0.01 * p[:, 1], -2e-4 + 0.0 * p[:, 0], 0.02 * p[:, 0]])
+        with tempfile.TemporaryDirectory() as case:
+            # two "processors" sharing the points 1 and 4 (one face each), the second binary
+            for rank, face in enumerate(faces):
+                part = os.path.join(case, "processor%d" % rank)
+                writeAsciiCase(part, points, [face])
+                moved = os.path.join(part, "0", "polyMesh", "points")
+                if rank:
+                    writeBinaryPoints(os.path.join(part, "constant", "polyMesh", "points"), points)
+                    writeBinaryPoints(moved, points + move(points))
+                else:
+                    os.makedirs(os.path.dirname(moved))
+                    with open(moved, "w") as f:
+                        f.write(_HEADER + _foamList(points + move(points), _vec))
+            ref, disp = foilDisplacement.foilDisplacement(case, "0", "foil")
+            self.assertEqual(len(ref), 6)                    # 8 patch points, 2 shared
+            np.testing.assert_allclose(disp, move(ref), rtol=0, atol=1e-15)
+            out = os.path.join(case, "foil.csv")
+            with redirect_stdout(io.StringIO()):
+                self.assertEqual(foilDisplacement.main([case, out]), 0)
+            nodes, values = sectionShape.read_interface(out)   # the interface CSV columns
+            np.testing.assert_allclose(values, move(nodes), rtol=0, atol=1e-12)
+            err = io.StringIO()
+            with redirect_stderr(err), self.assertRaises(SystemExit) as e:
+                foilDisplacement.main([case, out, "--time", "5"])
+            self.assertEqual(e.exception.code, 2)
+            self.assertIn("no moved mesh 5/polyMesh/points", err.getvalue())
 
 
 if __name__ == "__main__":
