@@ -61,14 +61,15 @@
 #                        one accepted in the mean it gives the frozen shape's steady or
 #                        long-window mean loads. Not with --init-from or --resume (a resumed
 #                        shape run keeps its mesh: --resume alone, tools/shapeCheck.sh --resume)
-#   --shape-displacement CSV  solve the foil in the shape of a structural displacement: CSV is
-#                        an interface CSV of solid-app (RUN/results/MODEL/interface/level_NNNN.csv,
-#                        any preset's run), interpolated onto this mesh's foil points
-#                        (tools/foilMotion.py --from-interface: a local linear fit to the 12
-#                        nearest nodes) and taken into the volume by the case's own motion
-#                        solver (moveDynamicMesh); checkMesh must pass on the moved mesh. One
-#                        coupled level's shape so replays on the fluid mesh of any preset,
-#                        without the coupling. The flow starts from rest, from --init-from, or
+#   --shape-displacement CSV  solve the foil in a given displacement: CSV has the columns
+#                        x,y,z,ux,uy,uz (a solid-app interface CSV, RUN/results/MODEL/interface/
+#                        level_NNNN.csv, or a coupled fluid case's foil displacement written by
+#                        tools/foilDisplacement.py; any preset's run), interpolated onto this
+#                        mesh's foil points (tools/foilMotion.py --from-interface: moving least
+#                        squares over the nearest nodes) and taken into the volume by the case's
+#                        own motion solver (moveDynamicMesh); checkMesh must pass on the moved
+#                        mesh. One coupled level's shape so replays on the fluid mesh of any
+#                        preset, without the coupling (README, "The trailing edge's share"). The flow starts from rest, from --init-from, or
 #                        with --shape-from CASE from CASE's flow (CASE's moved mesh is then
 #                        replaced). Not with --resume
 #   --check-only         validate the options' values and exit: 0, or 2 with the one-line error;
