@@ -69,9 +69,9 @@
 #                        squares over the nearest nodes) and taken into the volume by the case's
 #                        own motion solver (moveDynamicMesh); checkMesh must pass on the moved
 #                        mesh. One coupled level's shape so replays on the fluid mesh of any
-#                        preset, without the coupling (README, "The trailing edge's share"). The flow starts from rest, from --init-from, or
-#                        with --shape-from CASE from CASE's flow (CASE's moved mesh is then
-#                        replaced). Not with --resume
+#                        preset, without the coupling (README, "The trailing edge's share").
+#                        The flow starts from rest, from --init-from, or with --shape-from CASE
+#                        from CASE's flow (CASE's moved mesh is then replaced). Not with --resume
 #   --check-only         validate the options' values and exit: 0, or 2 with the one-line error;
 #                        writes nothing and needs neither --mesh, --out nor fluid-app (blcheck.sh
 #                        calls it before it meshes)
@@ -162,7 +162,7 @@ if [ -n "$shapeDisplacement" ]; then
     [ -f "$shapeDisplacement" ] ||
         die "--shape-displacement '$shapeDisplacement': no such file; give a solid-app interface CSV, e.g. RUN/results/baseline/interface/level_0000.csv"
     head -2 "$shapeDisplacement" | grep -q '^x,y,z,ux,uy,uz' ||
-        die "--shape-displacement '$shapeDisplacement' is not a solid-app interface CSV (no header x,y,z,ux,uy,uz...)"
+        die "--shape-displacement '$shapeDisplacement' is not an interface CSV (no header line x,y,z,ux,uy,uz...: give a solid-app interface CSV or one of tools/foilDisplacement.py)"
 fi
 if [ -n "$shapeFrom" ]; then
     [ "$resume" = 0 ] && [ -z "$initFrom" ] ||
@@ -243,7 +243,7 @@ fd() { foamDictionary "$case/$1" -entry "$2" -set "$3" > /dev/null; }
 # must pass; the fields are converted to ASCII on the way, controlDict and 0/pointDisplacement
 # are restored
 replayShape() {
-    local csv=$1 dirs=(.) d r lib par=() run=()
+    local csv=$1 dirs=(.) d r lib message par=() run=()
     [ "$np" -gt 1 ] && { dirs=(); for ((r = 0; r < np; r++)); do dirs+=("processor$r"); done; par=(-parallel); run=(mpirun --oversubscribe -np "$np"); }
     lib="$(dirname "$(command -v fluid-app)")/../lib"
     [ -f "$lib/libfsiMeshMotion.so" ] || die "--shape-displacement: libfsiMeshMotion.so not found next to fluid-app ($lib)"
@@ -258,8 +258,9 @@ replayShape() {
         die "--shape-displacement: foamFormatConvert failed (see $case/log.foamFormatConvert.shape)"
     for d in "${dirs[@]}"; do
         cp "$case/$d/0/pointDisplacement" "$case/$d/0/pointDisplacement.rigid"
-        /usr/bin/python3 "$here/tools/foilMotion.py" "$case/$d" --from-interface "$csv" >> "$case/log.foilMotion" ||
-            die "--shape-displacement: foilMotion.py failed on $case/$d (message above)"
+        message=$(/usr/bin/python3 "$here/tools/foilMotion.py" "$case/$d" --from-interface "$csv" \
+            2>&1 >> "$case/log.foilMotion") ||
+            die "--shape-displacement on $case/$d: ${message##*$'\n'}"
     done
     ( cd "$case" && LD_LIBRARY_PATH="$lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" \
         "${run[@]}" moveDynamicMesh "${par[@]}" > log.moveDynamicMesh 2>&1 ) ||

@@ -193,7 +193,7 @@ refusedBefore 2 --resume blcheck.sh --preset coarse --resume
 # no interface CSV, or with --resume, refused in one line before anything is made
 refusedBefore 2 "--shape-displacement '$work/none.csv': no such file" rigid.sh --mesh "$fakeMesh" --shape-displacement "$work/none.csv"
 printf 'a,b\n1,2\n' > "$work/not-interface.csv"
-refusedBefore 2 "is not a solid-app interface CSV" rigid.sh --mesh "$fakeMesh" --shape-displacement "$work/not-interface.csv"
+refusedBefore 2 "is not an interface CSV" rigid.sh --mesh "$fakeMesh" --shape-displacement "$work/not-interface.csv"
 printf '# level 0 time 0 s\nx,y,z,ux,uy,uz,fx,fy,fz\n0.37,0,0.05,0,-1e-3,0,0,0,0\n' > "$work/interface.csv"
 refusedBefore 2 "not with --resume" rigid.sh --mesh "$fakeMesh" --resume --shape-displacement "$work/interface.csv"
 # --shape-from (a rigid solve in a coupled run's shape): a case without a moved mesh, one
