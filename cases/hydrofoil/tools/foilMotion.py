@@ -24,16 +24,17 @@ pointDisplacement of a coupled run's level on the same mesh (its internalField a
 points): a coupled level's motion replayed on a fresh copy of the mesh, e.g. to see which part of
 the mapped displacement a mesh-quality failure comes from (cases/hydrofoil/README.md, "The tip
 cells and the mapped displacement's kink").
---from-interface CSV takes it from a solid-app interface CSV instead (RUN/results/MODEL/interface/
-level_NNNN.csv: the structure's wetted nodes x,y,z with their displacement ux,uy,uz), on any
-fluid mesh of the same foil: each foil point gets the value at its position of a local linear
-least-squares fit to the nearest NEIGHBOURS (12) nodes (exact for a displacement linear in
-x, y, z; a node farther than 2 mm from a foil point is refused as another geometry). One coupled
-level's structural shape can so be imposed on the fluid meshes of another preset (rigid.sh
+--from-interface CSV takes it from a CSV with the columns x,y,z,ux,uy,uz instead (a solid-app
+interface CSV, RUN/results/MODEL/interface/level_NNNN.csv, or tools/foilDisplacement.py's), on
+any fluid mesh of the same foil: each foil point gets the value of a moving-least-squares linear
+fit to the nodes around it (interpolateLinear below: exact for a displacement linear in x, y, z;
+a foil point farther than 2 mm from every node is refused as another geometry). One coupled
+level's shape can so be imposed on the fluid mesh of another preset (rigid.sh
 --shape-displacement).
 Values are in the order of the patch's mesh points (points in order of first appearance in the
-patch faces), which is OpenFOAM's PrimitivePatch::meshPoints order. The mesh must be ASCII
-(foamFormatConvert with writeFormat ascii converts a binary one).
+patch faces), which is OpenFOAM's PrimitivePatch::meshPoints order. The mesh may be ASCII or
+binary; TIME/pointDisplacement must be ASCII (foamFormatConvert with writeFormat ascii converts
+it).
 """
 import argparse
 import math
@@ -44,7 +45,7 @@ import sys
 import numpy as np
 
 X_QC, SPAN = 0.3685, 0.100
-NEIGHBOURS = 12        # interface nodes per local linear fit (--from-interface)
+NEIGHBOURS = 12        # the fit's radius: 1.5 x the distance to this nearest node (--from-interface)
 MAX_GAP = 2.0e-3       # m: a foil point farther than this from every node: another geometry
 
 
@@ -151,11 +152,11 @@ def interpolateLinear(nodes, values, targets, neighbours=NEIGHBOURS):
     continuous function of the target's position, and a weight that vanishes where a node
     enters or leaves: the result has no jumps between neighbouring targets, which would fold
     the um-thin wall cells). The fit is about the nodes' weighted centre, coordinates scaled by
-    R, and directions the nodes hardly span
-    (singular values below 1e-2 of the largest: across a gently curved surface) are left out
-    of the fit, so that the value is carried unchanged along the surface normal to a target
-    off the nodes' surface (0.17 mm near the trailing edge, fluid against solid mesh), instead
-    of being extrapolated with a gradient the nodes do not determine. Exact for values linear in
+    R, and directions the nodes hardly span (singular values below 1e-2 of the largest: across
+    a gently curved surface) are left out of the fit, so that the value is carried unchanged
+    along the surface normal to a target off the nodes' surface (0.17 mm near the trailing
+    edge, fluid against solid mesh), instead of being extrapolated with a gradient the nodes do
+    not determine. Exact for values linear in
     x, y, z where the nodes span three directions, and within the nodes' plane where they span
     two. Returns (values at targets, largest nearest-node distance)."""
     from scipy.spatial import cKDTree
@@ -193,7 +194,7 @@ def main(argv):
     p.add_argument("--from", dest="source", default="",
                    help="pointDisplacement (ASCII, same mesh) whose foil values to impose")
     p.add_argument("--from-interface", dest="interface", default="",
-                   help="solid-app interface CSV (x,y,z,ux,uy,uz) interpolated onto the foil")
+                   help="CSV x,y,z,ux,uy,uz (solid-app interface, foilDisplacement.py) fitted onto the foil")
     a = p.parse_args(argv)
     if a.source and a.interface:
         raise RuntimeError("foilMotion.py: --from and --from-interface exclude each other")
