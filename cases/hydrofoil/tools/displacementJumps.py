@@ -18,13 +18,12 @@ The files must be ASCII, as foilMotion.py's: convert with writeFormat ascii in
 system/controlDict and `foamFormatConvert [-parallel] -time TIME` (it converts constant/ too).
 """
 import argparse
-import glob
 import os
 import sys
 
 import numpy as np
 
-from foilMotion import readFaces, readPatch, readPoints
+from foilMotion import caseParts, readFaces, readPatch, readPoints
 
 
 def edgeJumps(points, displacement, faces):
@@ -43,9 +42,8 @@ def edgeJumps(points, displacement, faces):
 
 def caseJumps(case, time, patch):
     """edgeJumps of the patch in a serial case or over its processor directories."""
-    parts = sorted(glob.glob(os.path.join(case, "processor*"))) or [case]
     rows = []
-    for part in parts:
+    for part in caseParts(case):
         mesh = os.path.join(part, "constant", "polyMesh")
         start, count = readPatch(os.path.join(mesh, "boundary"), patch)
         if count == 0:

@@ -14,13 +14,12 @@ to be imposed on the fluid mesh of another preset. Exit 2 with one line on stder
 no moved mesh or no such patch.
 """
 import argparse
-import glob
 import os
 import sys
 
 import numpy as np
 
-from foilMotion import meshPoints, readFaces, readPatch, readPoints
+from foilMotion import caseParts, meshPoints, readFaces, readPatch, readPoints
 
 
 def fail(message):
@@ -30,9 +29,8 @@ def fail(message):
 
 def foilDisplacement(case, time, patch):
     """(reference points, displacements): two (n, 3) arrays over the patch's points, each once."""
-    parts = sorted(glob.glob(os.path.join(case, "processor[0-9]*"))) or [case]
     refs, disps = [], []
-    for part in parts:
+    for part in caseParts(case):
         mesh = os.path.join(part, "constant", "polyMesh")
         moved = os.path.join(part, time, "polyMesh", "points")
         if not os.path.isfile(moved):

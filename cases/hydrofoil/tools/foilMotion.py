@@ -37,6 +37,7 @@ binary; TIME/pointDisplacement must be ASCII (foamFormatConvert with writeFormat
 it).
 """
 import argparse
+import glob
 import math
 import os
 import re
@@ -107,6 +108,12 @@ def readFaces(path, start, count):
     n, body = _listBody(raw.decode())
     faces = re.findall(r"\d+\s*\(([^()]*)\)", body)
     return [[int(v) for v in s.split()] for s in faces[start:start + count]]
+
+
+def caseParts(case):
+    """The folders holding CASE's mesh parts: its processorN folders (sorted), or CASE itself
+    when it is not decomposed."""
+    return sorted(glob.glob(os.path.join(case, "processor[0-9]*"))) or [case]
 
 
 def readPatch(boundaryPath, name):
