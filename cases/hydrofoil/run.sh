@@ -121,6 +121,17 @@
 #                                           "Second order inside the coupled loop")
 #   --max-fluid-iterations N                cap on the SIMPLE iterations of one coupled fluid solve
 #                                           (fsiDict coupled/maxIterations; default the case's 400)
+#   --mapping TYPE                          the interface mapping (the solid configs'
+#                                           coupling.mapping.type): nearest-projection (the
+#                                           case's default) |
+#                                           moving-least-squares (each fluid point takes the linear
+#                                           field fitted to the solid nodes around it: a fluid point
+#                                           inside the solid's blunt trailing edge moves with the
+#                                           section there; README, "The trailing edge's share") |
+#                                           rbf-wendland-c2 | rbf-pu | nearest-neighbour. The
+#                                           type's coefficient block is the configs' (defaults
+#                                           where absent); combine with --mapping-smoothing 0 to
+#                                           leave the fluid-side smoothing out
 #   --mapping-smoothing R                   radius [m] of the moving-least-squares smoothing of the
 #                                           mapped values on the fluid side (the solid configs'
 #                                           coupling.mapping.smoothing_radius; default the case's
@@ -154,7 +165,7 @@ source "$FSI_ROOT/scripts/env.sh"
 
 preset=coarse material=both npf=2 nps=2 launch=mpmd tc=0.12 cli=0.5 end="" timeout=900 meshFrom="" restart=0 checkOnly=0
 solidElement="" solidFrom=""
-flow="" scheme=upwind rootWall=wall algorithm="" fluidMesh="" initFrom="" band="" maxFluidIt="" fluidTol="" couplingTol="" bandFactor="" bandWindow="" bandMean="" bandRef="" oscWindow="" wsFlux="" wsMaxCoef="" mapSmoothing="" acceleration=""
+flow="" scheme=upwind rootWall=wall algorithm="" fluidMesh="" initFrom="" band="" maxFluidIt="" fluidTol="" couplingTol="" bandFactor="" bandWindow="" bandMean="" bandRef="" oscWindow="" wsFlux="" wsMaxCoef="" mapSmoothing="" mapType="" acceleration=""
 die() { echo "error: hydrofoil/run.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -188,6 +199,7 @@ while [ $# -gt 0 ]; do
     --coupling-tolerance) [ $# -ge 2 ] || die "--coupling-tolerance needs a value in m"; couplingTol=$2; shift 2 ;;
     --coupling-band-factor) [ $# -ge 2 ] || die "--coupling-band-factor needs a number >= 0"; bandFactor=$2; shift 2 ;;
     --max-fluid-iterations) [ $# -ge 2 ] || die "--max-fluid-iterations needs a value"; maxFluidIt=$2; shift 2 ;;
+    --mapping) [ $# -ge 2 ] || die "--mapping needs a type, e.g. moving-least-squares"; mapType=$2; shift 2 ;;
     --mapping-smoothing) [ $# -ge 2 ] || die "--mapping-smoothing needs a radius in m"; mapSmoothing=$2; shift 2 ;;
     --restart) restart=1; shift ;;
     --check-only) checkOnly=1; shift ;;
@@ -283,6 +295,14 @@ fi
 [ "$solidElement" = tet10 ] || configsHave --solid-element "'kinematics:' line under solid" '^  kinematics: '
 [ -z "$mapSmoothing" ] || awk -v r="$mapSmoothing" 'BEGIN{exit !(r ~ /^[0-9.eE+-]+$/ && r + 0 >= 0 && r + 0 < 1e-2)}' ||
     die "--mapping-smoothing '$mapSmoothing' must be a radius in m in [0, 1e-2), e.g. 2e-4 (0 = off)"
+case "$mapType" in
+  ""|nearest-projection|moving-least-squares|rbf-wendland-c2|rbf-pu|nearest-neighbour) ;;
+  *) die "--mapping '$mapType' is not one of nearest-projection, moving-least-squares, rbf-wendland-c2, rbf-pu, nearest-neighbour" ;;
+esac
+[ -z "$mapType" ] || for y in solid/baseline.yaml solid/relaxed.yaml solid/viscoelastic.yaml; do
+  grep -A1 '^  mapping:' "$y" | grep -q '^    type: ' ||
+      die "--mapping: $y has no 'type:' line right under coupling.mapping (restore it from cases/hydrofoil/solid)"
+done
 [ -z "$mapSmoothing" ] || configsHave --mapping-smoothing \
     "'smoothing_radius:' line under coupling.mapping" '^    smoothing_radius: '
 [ -z "$maxFluidIt" ] || { [[ "$maxFluidIt" =~ ^[1-9][0-9]*$ ]] && [ "$maxFluidIt" -ge 200 ]; } ||
@@ -398,6 +418,7 @@ for m in "${runs[@]}"; do
   setConfigNumber "$cfg" absolute_tolerance "$couplingTol"
   setConfigNumber "$cfg" band_factor "$bandFactor"
   setConfigNumber "$cfg" smoothing_radius "$mapSmoothing"
+  [ -z "$mapType" ] || sed -i "/^  mapping:/{n;s/^    type: [a-z0-9-]*/    type: $mapType/}" "$cfg"
   if [ -n "$end" ] && [ "$m" = viscoelastic ]; then
     sed -i "s|^    end: .*|    end: $end|; s|^    hit: .*|    hit: []|" "$cfg"
   fi

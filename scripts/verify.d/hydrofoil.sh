@@ -52,6 +52,10 @@
 #   HYDROFOIL_SOLID_MESH_FROM  a run or mesh folder, LEVEL in it replaced by the preset (e.g. a
 #                      fixed .../mesh-fine): every level's structure meshed as there (run.sh
 #                      --solid-mesh-from), so that only the fluid mesh is refined
+#   HYDROFOIL_MAPPING  T: run.sh --mapping T (the interface mapping, e.g. moving-least-squares;
+#                      default unset, the case's nearest-projection)
+#   HYDROFOIL_MAPPING_SMOOTHING  R [m]: run.sh --mapping-smoothing R (default unset, the case's
+#                      2e-4; 0 = off)
 #   HYDROFOIL_INIT_FROM  a path with LEVEL in it (e.g. .../turbulent-upwind-simple-LEVEL/rigid/case):
 #                      each level's fluid starts from that OpenFOAM case's solution (run.sh
 #                      --init-from), LEVEL replaced by the preset; must exist for every level
@@ -79,9 +83,10 @@ couplingTol=${HYDROFOIL_COUPLING_TOLERANCE:-}
 band=${HYDROFOIL_BAND_TOLERANCE:-} bandMean=${HYDROFOIL_BAND_MEAN:-}
 fluidTol=${HYDROFOIL_FLUID_TOLERANCE:-}
 solidElement=${HYDROFOIL_SOLID_ELEMENT:-} solidFromPattern=${HYDROFOIL_SOLID_MESH_FROM:-}
+mapType=${HYDROFOIL_MAPPING:-} mapSmoothing=${HYDROFOIL_MAPPING_SMOOTHING:-}
 case "$fluidMesh" in snappy|cgrid) ;; *) echo "error: hydrofoil: HYDROFOIL_FLUID_MESH='$fluidMesh' must be snappy or cgrid" >&2; exit 2 ;; esac
 # Every level's run options, before anything is meshed or run: run.sh --check-only names a bad
-# value (HYDROFOIL_FLOW/SCHEME/ALGORITHM/ROOT_WALL/OSCILLATION_WINDOW/COUPLING_TOLERANCE/FLUID_TOLERANCE/BAND_TOLERANCE/BAND_MEAN/SOLID_*, a missing init
+# value (HYDROFOIL_FLOW/SCHEME/ALGORITHM/ROOT_WALL/OSCILLATION_WINDOW/COUPLING_TOLERANCE/FLUID_TOLERANCE/BAND_TOLERANCE/BAND_MEAN/SOLID_*/MAPPING*, a missing init
 # case) in one line
 runOptions() { # LEVEL: the run.sh options of that level (without --mesh-from) into opts
   opts=(--preset "$1" --material baseline --np-fluid "$npf" --np-solid "$nps" --timeout "$timeout"
@@ -95,6 +100,8 @@ runOptions() { # LEVEL: the run.sh options of that level (without --mesh-from) i
   [ -z "$initPattern" ] || opts+=(--init-from "${initPattern//LEVEL/$1}")
   [ -z "$solidElement" ] || opts+=(--solid-element "$solidElement")
   [ -z "$solidFromPattern" ] || opts+=(--solid-mesh-from "${solidFromPattern//LEVEL/$1}")
+  [ -z "$mapType" ] || opts+=(--mapping "$mapType")
+  [ -z "$mapSmoothing" ] || opts+=(--mapping-smoothing "$mapSmoothing")
 }
 for level in $levels; do
   [ -z "$initPattern" ] || [ -d "${initPattern//LEVEL/$level}/constant/polyMesh" ] || { echo "error: hydrofoil: HYDROFOIL_INIT_FROM: no OpenFOAM case ${initPattern//LEVEL/$level} for $level (run its rigid solve first, e.g. scripts/verify hydrofoil-3d-rigid)" >&2; exit 2; }

@@ -238,7 +238,8 @@ TEST(MappingParameters, RejectsBadInputWithOneLineMessages)
     {
         EXPECT_EQ(std::string(e.what()),
                   "mapping.type 'rbf-quadratic' is unknown; use one of "
-                  "nearest-neighbour, rbf-thin-plate, rbf-wendland-c2, rbf-pu, nearest-projection");
+                  "nearest-neighbour, rbf-thin-plate, rbf-wendland-c2, rbf-pu, nearest-projection, "
+                  "moving-least-squares");
     }
     MappingParameters p;
     EXPECT_EQ(message(p), ""); // nearest-neighbour by default

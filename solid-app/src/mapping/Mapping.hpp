@@ -12,7 +12,8 @@
 // For forces, build the mapping with source = solid wetted nodes and target = fluid face centres
 // and call applyConservative: total force is conserved exactly (H reproduces constants), total
 // moment too when H reproduces linear fields (all RBF kinds; not nearest-neighbour; for
-// nearest-projection up to the forces' lever arm off the source surface).
+// nearest-projection up to the forces' lever arm off the source surface; moving-least-squares
+// where its stencils span three directions).
 #pragma once
 
 #include "config/Strategy.hpp"
@@ -49,7 +50,7 @@ public:
     virtual ~Mapping() = default;
 
     // Keyword of the strategy ("nearest-neighbour", "rbf-thin-plate", "rbf-wendland-c2",
-    // "rbf-pu", "nearest-projection").
+    // "rbf-pu", "nearest-projection", "moving-least-squares").
     virtual std::string name() const = 0;
 
     // The source's surface faces, before compute(); ignored by the point-cloud strategies

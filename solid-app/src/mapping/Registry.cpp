@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "mapping/Registry.hpp"
 
+#include "mapping/MovingLeastSquares.hpp"
 #include "mapping/NearestNeighbour.hpp"
 #include "mapping/NearestProjection.hpp"
 #include "mapping/RbfPartitionOfUnity.hpp"
@@ -18,6 +19,7 @@ const std::vector<MappingType>& mappingTypes()
         config::strategyType<WendlandParameters, Mapping>(),
         config::strategyType<PartitionOfUnityParameters, Mapping>(),
         config::strategyType<NearestProjectionParameters, Mapping>(),
+        config::strategyType<MovingLeastSquaresParameters, Mapping>(),
     };
     return types;
 }
