@@ -70,6 +70,8 @@
 #                        own motion solver (moveDynamicMesh); checkMesh must pass on the moved
 #                        mesh. One coupled level's shape so replays on the fluid mesh of any
 #                        preset, without the coupling (README, "The trailing edge's share").
+#                        A CSV of another foil (a foil point more than 2 mm from every node) is
+#                        refused before anything is made.
 #                        The flow starts from rest, from --init-from, or with --shape-from CASE
 #                        from CASE's flow (CASE's moved mesh is then replaced). Not with --resume
 #   --check-only         validate the options' values and exit: 0, or 2 with the one-line error;
@@ -194,6 +196,13 @@ fi
 "$here/tools/setFlow.sh" --check-only --flow "$flow" --scheme "$scheme" ${algorithm:+--algorithm "$algorithm"}
 case "$rootWall" in wall|slip) ;; *) die "--root-wall '$rootWall' must be wall (the paper's no-slip tunnel) or slip" ;; esac
 [ "$checkOnly" = 0 ] || exit 0
+# --shape-displacement: the CSV must be this foil's, every foil point of the mesh within 2 mm of a
+# node (foilMotion.py --check-gap), checked before anything is made (an uncompressed mesh only:
+# replayShape checks again on the case)
+if [ -n "$shapeDisplacement" ] && [ -f "$mesh/constant/polyMesh/points" ]; then
+    message=$(/usr/bin/python3 "$here/tools/foilMotion.py" "$mesh" --from-interface "$shapeDisplacement" \
+        --check-gap 2>&1 > /dev/null) || { message=${message##*$'\n'}; die "--shape-displacement: ${message#error: }"; }
+fi
 case="$out/case"
 # latestWritten: the largest written iteration > 0 of the case (processor0's with np > 1), or 0
 latestWritten() {

@@ -202,9 +202,14 @@ def main(argv):
                    help="pointDisplacement (ASCII, same mesh) whose foil values to impose")
     p.add_argument("--from-interface", dest="interface", default="",
                    help="CSV x,y,z,ux,uy,uz (solid-app interface, foilDisplacement.py) fitted onto the foil")
+    p.add_argument("--check-gap", action="store_true",
+                   help="with --from-interface: only check that every foil point lies within "
+                        f"{MAX_GAP * 1e3:g} mm of a node of the CSV (the same foil); writes nothing")
     a = p.parse_args(argv)
     if a.source and a.interface:
         raise RuntimeError("foilMotion.py: --from and --from-interface exclude each other")
+    if a.check_gap and not a.interface:
+        raise RuntimeError("foilMotion.py: --check-gap needs --from-interface CSV")
     mesh = os.path.join(a.case, "constant", "polyMesh")
     start, count = readPatch(os.path.join(mesh, "boundary"), a.patch)
     faces = readFaces(os.path.join(mesh, "faces"), start, count)
@@ -221,13 +226,19 @@ def main(argv):
     elif a.interface:
         from sectionShape import read_interface
         nodes, values = read_interface(a.interface)
-        d, gap = interpolateLinear(nodes, values, pts)
+        if a.check_gap:
+            from scipy.spatial import cKDTree
+            gap = float(cKDTree(nodes).query(pts)[0].max()) if len(pts) else 0.0
+        else:
+            d, gap = interpolateLinear(nodes, values, pts)
         if gap > MAX_GAP:
             raise RuntimeError(f"foilMotion.py: --from-interface {a.interface}: a foil point of "
                                f"{a.case} is {gap * 1e3:.3g} mm from the nearest interface node "
                                f"(> {MAX_GAP * 1e3:g} mm): not this foil's interface")
         print(f"foilMotion: {len(nodes)} interface nodes of {a.interface}, nearest node within "
               f"{gap * 1e6:.1f} um of every foil point")
+        if a.check_gap:
+            return 0
     else:
         d = displacement(pts, a.tip_deflection, a.tip_twist_deg, a.bending)
     if a.roughness:

@@ -254,9 +254,18 @@ class FoilMotion(unittest.TestCase):
             p = points[[4, 5, 2, 1, 3, 0]]
             expected = np.column_stack([0.01 * p[:, 0], 0.02 * p[:, 1] - 1e-4, np.full(6, 3e-5)])
             np.testing.assert_allclose(values, expected, rtol=0, atol=1e-12)
+            # --check-gap: the same check, nothing written
+            with redirect_stdout(io.StringIO()):
+                self.assertEqual(foilMotion.main([case, "--from-interface", csvPath, "--check-gap"]), 0)
             writeCsv(np.array([0.0, 0.0, 5e-3]))        # the nodes 5 mm away
             with self.assertRaisesRegex(RuntimeError, "not this foil's interface"):
                 foilMotion.main([case, "--from-interface", csvPath])
+            with self.assertRaisesRegex(RuntimeError, "not this foil's interface"):
+                foilMotion.main([case, "--from-interface", csvPath, "--check-gap"])
+            with open(os.path.join(case, "0", "pointDisplacement")) as f:
+                self.assertEqual(f.read(), text)        # the refused calls wrote nothing
+            with self.assertRaisesRegex(RuntimeError, "needs --from-interface"):
+                foilMotion.main([case, "--check-gap"])
             with self.assertRaisesRegex(RuntimeError, "exclude each other"):
                 foilMotion.main([case, "--from-interface", csvPath, "--from", csvPath])
 

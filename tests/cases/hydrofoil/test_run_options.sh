@@ -196,6 +196,18 @@ printf 'a,b\n1,2\n' > "$work/not-interface.csv"
 refusedBefore 2 "is not an interface CSV" rigid.sh --mesh "$fakeMesh" --shape-displacement "$work/not-interface.csv"
 printf '# level 0 time 0 s\nx,y,z,ux,uy,uz,fx,fy,fz\n0.37,0,0.05,0,-1e-3,0,0,0,0\n' > "$work/interface.csv"
 refusedBefore 2 "not with --resume" rigid.sh --mesh "$fakeMesh" --resume --shape-displacement "$work/interface.csv"
+# ... and a CSV of another geometry (a foil point 50 mm from every node), refused before the case
+# is built: a mesh whose foil patch is two faces of a 2 mm x 1 mm plate at z = 0.1 m
+fakeFoil=$work/fake-foil-mesh
+rm -rf "$fakeFoil"; mkdir -p "$fakeFoil/constant/polyMesh"
+{ printf 'FoamFile\n{\n    format ascii;\n}\n6\n(\n'
+  printf '(0.3 0 0.1)\n(0.301 0 0.1)\n(0.302 0 0.1)\n(0.3 0.001 0.1)\n(0.301 0.001 0.1)\n(0.302 0.001 0.1)\n)\n'
+} > "$fakeFoil/constant/polyMesh/points"
+printf 'FoamFile\n{\n    format ascii;\n}\n3\n(\n3(0 1 4)\n4(4 5 2 1)\n4(3 4 1 0)\n)\n' > "$fakeFoil/constant/polyMesh/faces"
+printf 'FoamFile\n{\n    format ascii;\n}\n1\n(\n    foil\n    {\n        type wall;\n        nFaces 2;\n        startFace 1;\n    }\n)\n' \
+    > "$fakeFoil/constant/polyMesh/boundary"
+: > "$fakeFoil/constant/polyMesh/owner"
+refusedBefore 2 "not this foil's interface" rigid.sh --mesh "$fakeFoil" --shape-displacement "$work/interface.csv"
 # --shape-from (a rigid solve in a coupled run's shape): a case without a moved mesh, one
 # decomposed for other ranks, one with a rank folder lacking the moved mesh, or with --init-from,
 # refused in one line before anything is made
