@@ -113,3 +113,15 @@ TEST(MappingApply, SmoothedMappingAllocatesNothingAfterTheFirstCall)
     EXPECT_NEAR(v(0, 0), 1.0, 1e-12);
     EXPECT_NEAR(f.col(0).sum(), double(t.rows()), 1e-9);
 }
+
+TEST(MappingApply, MovingLeastSquaresAllocatesNothingAfterTheFirstCall)
+{
+    const PointCloud s = solidCylinder(24), t = fluidCylinder(24);
+    MappingParameters p;
+    p.strategy = mappingType("moving-least-squares").defaults();
+    const auto mapping = buildMapping(p, s, t);
+    Values v, f;
+    applyThriceWithoutAllocation(*mapping, v, f);
+    EXPECT_NEAR(v(0, 0), 1.0, 1e-12);
+    EXPECT_NEAR(f.col(0).sum(), double(t.rows()), 1e-9);
+}
