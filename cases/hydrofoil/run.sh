@@ -128,7 +128,8 @@
 #                                           field fitted to the solid nodes around it: a fluid point
 #                                           inside the solid's blunt trailing edge moves with the
 #                                           section there; README, "The trailing edge's share") |
-#                                           rbf-wendland-c2 | rbf-pu | nearest-neighbour. The
+#                                           rbf-wendland-c2 | rbf-pu | rbf-thin-plate |
+#                                           nearest-neighbour. The
 #                                           type's coefficient block is the configs' (defaults
 #                                           where absent); combine with --mapping-smoothing 0 to
 #                                           leave the fluid-side smoothing out
@@ -296,8 +297,8 @@ fi
 [ -z "$mapSmoothing" ] || awk -v r="$mapSmoothing" 'BEGIN{exit !(r ~ /^[0-9.eE+-]+$/ && r + 0 >= 0 && r + 0 < 1e-2)}' ||
     die "--mapping-smoothing '$mapSmoothing' must be a radius in m in [0, 1e-2), e.g. 2e-4 (0 = off)"
 case "$mapType" in
-  ""|nearest-projection|moving-least-squares|rbf-wendland-c2|rbf-pu|nearest-neighbour) ;;
-  *) die "--mapping '$mapType' is not one of nearest-projection, moving-least-squares, rbf-wendland-c2, rbf-pu, nearest-neighbour" ;;
+  ""|nearest-projection|moving-least-squares|rbf-wendland-c2|rbf-pu|rbf-thin-plate|nearest-neighbour) ;;
+  *) die "--mapping '$mapType' is not one of nearest-projection, moving-least-squares, rbf-wendland-c2, rbf-pu, rbf-thin-plate, nearest-neighbour" ;;
 esac
 [ -z "$mapType" ] || for y in solid/baseline.yaml solid/relaxed.yaml solid/viscoelastic.yaml; do
   grep -A1 '^  mapping:' "$y" | grep -q '^    type: ' ||

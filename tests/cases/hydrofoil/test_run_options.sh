@@ -6,6 +6,7 @@
 # --band-window, --oscillation-window, --fluid-tolerance (also a valid value with a solid config
 # that lacks its line), --coupling-tolerance,
 # --coupling-band-factor, --warm-start-flux,
+# --mapping (also a valid type with a solid config that lacks its type line),
 # --mapping-smoothing, --max-fluid-iterations, --fluid-mesh, --algorithm, --root-wall and
 # --simple-acceleration, --solid-element and --solid-mesh-from (a folder without the element's
 # mesh, of another section, or with --restart) (and a --fluid-mesh
@@ -68,6 +69,8 @@ check --coupling-band-factor -1
 check --coupling-band-factor twenty
 check --coupling-tolerance 5e-3   # a length in m: 5 mm is no tolerance
 check --band-window 300   # 2 x 300 > the case's cap of 400
+check --mapping rbf-quadratic
+edit="sed -i '/^    type: nearest-projection/d' solid/viscoelastic.yaml" check --mapping moving-least-squares
 check --mapping-smoothing -1e-4
 check --mapping-smoothing 0.2mm
 check --mapping-smoothing 0.05  # a radius in m: 5 cm smooths the whole foil
@@ -104,7 +107,7 @@ rm -rf "$dir"; mkdir -p "$dir"; cp -r "$FSI_ROOT/cases/hydrofoil/." "$dir/"
 before=$(cd "$dir" && find . | sort | md5sum)
 if ! (cd "$dir" && ./run.sh --check-only --material baseline --scheme linearUpwind --root-wall slip \
         --oscillation-window 20 --simple-acceleration anderson:5 --coupling-band-factor 0 \
-        --solid-element hex20 > out.txt 2> err.txt); then
+        --solid-element hex20 --mapping moving-least-squares --mapping-smoothing 0 > out.txt 2> err.txt); then
     echo "FAIL: run.sh --check-only with valid options: non-zero exit"; cat "$dir/err.txt"; fail=1
 elif [ "$(cd "$dir" && rm out.txt err.txt && find . | sort | md5sum)" != "$before" ]; then
     echo "FAIL: run.sh --check-only wrote into the case folder"; fail=1
