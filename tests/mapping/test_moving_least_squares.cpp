@@ -127,7 +127,8 @@ TEST(MovingLeastSquares, HasNoJumpsBetweenNeighbouringTargets)
     m.applyConsistent(f, mapped);
     double largestStep = 0.0;
     for (int i = 1; i < n; ++i)
-        largestStep = std::max(largestStep, (mapped.row(i) - mapped.row(i - 1)).cwiseAbs().maxCoeff());
+        largestStep =
+            std::max(largestStep, (mapped.row(i) - mapped.row(i - 1)).cwiseAbs().maxCoeff());
     EXPECT_LT(largestStep, 3.0 * slope * step);
 }
 
@@ -149,7 +150,8 @@ TEST(MovingLeastSquares, EachTargetsRowIgnoresTheOtherTargets)
 
 TEST(MovingLeastSquares, RefusesBadParametersAndTooFewSources)
 {
-    const auto message = [](MovingLeastSquaresParameters p) {
+    const auto message = [](MovingLeastSquaresParameters p)
+    {
         try
         {
             p.validate();

@@ -57,8 +57,7 @@ std::string MovingLeastSquaresParameters::echo() const
     return out.str();
 }
 
-MovingLeastSquares::MovingLeastSquares(const MovingLeastSquaresParameters& params)
-    : params_(params)
+MovingLeastSquares::MovingLeastSquares(const MovingLeastSquaresParameters& params) : params_(params)
 {
     params_.validate();
 }
@@ -76,7 +75,7 @@ void MovingLeastSquares::compute(const PointCloud& source, const PointCloud& tar
     std::vector<double> distance;
     std::vector<Eigen::Triplet<double>> triplets;
     triplets.reserve(static_cast<size_t>(target.rows()) * static_cast<size_t>(kMax));
-    Eigen::MatrixXd A(kMax, 4);   // sqrt(w) [1, (x_j - c) / R]
+    Eigen::MatrixXd A(kMax, 4); // sqrt(w) [1, (x_j - c) / R]
     Eigen::VectorXd sqrtW(kMax);
     maxGap_ = 0.0;
     for (Eigen::Index t = 0; t < target.rows(); ++t)
@@ -119,8 +118,8 @@ void MovingLeastSquares::compute(const PointCloud& source, const PointCloud& tar
         // the fitted value at x: [1, (x - c) / R] A^+ sqrt(W) f
         Eigen::RowVector4d basis;
         basis << 1.0, (x - centre) / radius;
-        const Eigen::RowVectorXd row = (basis * svd.matrixV() * inverse.asDiagonal()) *
-                                       svd.matrixU().transpose();
+        const Eigen::RowVectorXd row =
+            (basis * svd.matrixV() * inverse.asDiagonal()) * svd.matrixU().transpose();
         for (int j = 0; j < kMax; ++j)
         {
             const double coefficient = row(j) * sqrtW(j);
