@@ -127,22 +127,7 @@ void MovingLeastSquares::compute(const PointCloud& source, const PointCloud& tar
                 triplets.emplace_back(t, index[static_cast<size_t>(j)], coefficient);
         }
     }
-    weights_.resize(target.rows(), n);
-    weights_.setFromTriplets(triplets.begin(), triplets.end());
-    sourceSize_ = n;
-    targetSize_ = target.rows();
-}
-
-void MovingLeastSquares::applyConsistent(const Eigen::Ref<const Values>& sourceValues,
-                                         Eigen::Ref<Values> targetValues) const
-{
-    targetValues.noalias() = weights_ * sourceValues;
-}
-
-void MovingLeastSquares::applyConservative(const Eigen::Ref<const Values>& targetValues,
-                                           Eigen::Ref<Values> sourceValues) const
-{
-    sourceValues.noalias() = weights_.transpose() * targetValues;
+    setWeights(target.rows(), n, triplets);
 }
 
 } // namespace fsi::mapping

@@ -24,9 +24,7 @@
 // apply is one sparse product.
 #pragma once
 
-#include "mapping/Mapping.hpp"
-
-#include <Eigen/SparseCore>
+#include "mapping/SparseMapping.hpp"
 
 #include <string>
 #include <vector>
@@ -56,25 +54,19 @@ struct MovingLeastSquaresParameters
     std::string echo() const;
 };
 
-class MovingLeastSquares final : public Mapping
+class MovingLeastSquares final : public SparseMapping
 {
 public:
     explicit MovingLeastSquares(const MovingLeastSquaresParameters& params = {});
     std::string name() const override { return "moving-least-squares"; }
     // Throws std::runtime_error (one line) for fewer than 4 source points.
     void compute(const PointCloud& source, const PointCloud& target) override;
-    void applyConsistent(const Eigen::Ref<const Values>& sourceValues,
-                         Eigen::Ref<Values> targetValues) const override;
-    void applyConservative(const Eigen::Ref<const Values>& targetValues,
-                           Eigen::Ref<Values> sourceValues) const override;
 
     // Largest distance [m] from a target point to its nearest source node.
     double maxGap() const { return maxGap_; }
-    const Eigen::SparseMatrix<double, Eigen::RowMajor>& weights() const { return weights_; }
 
 private:
     MovingLeastSquaresParameters params_;
-    Eigen::SparseMatrix<double, Eigen::RowMajor> weights_; // H: targets x sources
     double maxGap_ = 0.0;
 };
 

@@ -229,22 +229,7 @@ void NearestProjection::compute(const PointCloud& source, const PointCloud& targ
         sumSquares += best * best;
     }
     rmsDistance_ = target.rows() > 0 ? std::sqrt(sumSquares / double(target.rows())) : 0.0;
-    weights_.resize(target.rows(), source.rows());
-    weights_.setFromTriplets(triplets.begin(), triplets.end()); // duplicates summed
-    sourceSize_ = source.rows();
-    targetSize_ = target.rows();
-}
-
-void NearestProjection::applyConsistent(const Eigen::Ref<const Values>& sourceValues,
-                                        Eigen::Ref<Values> targetValues) const
-{
-    targetValues.noalias() = weights_ * sourceValues;
-}
-
-void NearestProjection::applyConservative(const Eigen::Ref<const Values>& targetValues,
-                                          Eigen::Ref<Values> sourceValues) const
-{
-    sourceValues.noalias() = weights_.transpose() * targetValues;
+    setWeights(target.rows(), source.rows(), triplets); // duplicates summed
 }
 
 } // namespace fsi::mapping

@@ -29,9 +29,7 @@
 // projection.
 #pragma once
 
-#include "mapping/Mapping.hpp"
-
-#include <Eigen/SparseCore>
+#include "mapping/SparseMapping.hpp"
 
 #include <vector>
 
@@ -58,7 +56,7 @@ struct NearestProjectionParameters
     std::string echo() const;
 };
 
-class NearestProjection final : public Mapping
+class NearestProjection final : public SparseMapping
 {
 public:
     explicit NearestProjection(const NearestProjectionParameters& params = {});
@@ -67,10 +65,6 @@ public:
     // Pre: setSourceSurface() done with faces whose node indices are < source.rows(). Throws
     // std::runtime_error (one line) for no faces, a stray index or a non-surface face type.
     void compute(const PointCloud& source, const PointCloud& target) override;
-    void applyConsistent(const Eigen::Ref<const Values>& sourceValues,
-                         Eigen::Ref<Values> targetValues) const override;
-    void applyConservative(const Eigen::Ref<const Values>& targetValues,
-                           Eigen::Ref<Values> sourceValues) const override;
 
     // Largest and root-mean-square distance [m] from a target point to its projection (how far
     // the two discretised surfaces lie apart).
@@ -79,8 +73,7 @@ public:
 
 private:
     NearestProjectionParameters params_;
-    SourceSurface surface_;                                // empty until setSourceSurface()
-    Eigen::SparseMatrix<double, Eigen::RowMajor> weights_; // H: targets x sources
+    SourceSurface surface_; // empty until setSourceSurface()
     double maxDistance_ = 0.0;
     double rmsDistance_ = 0.0;
 };
