@@ -122,24 +122,30 @@
 #   --max-fluid-iterations N                cap on the SIMPLE iterations of one coupled fluid solve
 #                                           (fsiDict coupled/maxIterations; default the case's 400)
 #   --mapping TYPE                          the interface mapping (the solid configs'
-#                                           coupling.mapping.type): nearest-projection (the
-#                                           case's default) |
-#                                           moving-least-squares (each fluid point takes the linear
-#                                           field fitted to the solid nodes around it: a fluid point
+#                                           coupling.mapping.type). Default by fluid mesh: on the
+#                                           boundary-layer (cgrid) mesh moving-least-squares with
+#                                           no smoothing (each fluid point takes the linear field
+#                                           fitted to the solid nodes around it: a fluid point
 #                                           inside the solid's blunt trailing edge moves with the
-#                                           section there; README, "The trailing edge's share") |
-#                                           rbf-wendland-c2 | rbf-pu | rbf-thin-plate |
-#                                           nearest-neighbour. The
-#                                           type's coefficient block is the configs' (defaults
-#                                           where absent); combine with --mapping-smoothing 0 to
-#                                           leave the fluid-side smoothing out
+#                                           section there, and the coupled mesh study converges;
+#                                           README, "The mapping follows the fluid mesh"); on the
+#                                           snappy mesh the configs' nearest-projection with
+#                                           smoothing 2e-4. Or rbf-wendland-c2 | rbf-pu |
+#                                           rbf-thin-plate | nearest-neighbour. The type's
+#                                           coefficient block is the configs' (defaults where
+#                                           absent); given, the smoothing radius is the configs'
+#                                           2e-4 unless --mapping-smoothing says otherwise. A
+#                                           --restart keeps the mapping of the run's first start
+#                                           (file `mapping` in the run folder)
 #   --mapping-smoothing R                   radius [m] of the moving-least-squares smoothing of the
 #                                           mapped values on the fluid side (the solid configs'
-#                                           coupling.mapping.smoothing_radius; default the case's
-#                                           2e-4; 0 = off). It keeps the boundary-layer mesh's tip
-#                                           cells valid (README, "The tip cells and the mapped
-#                                           displacement's kink"); on the snappy meshes hardly a
-#                                           foil point has a neighbour that close
+#                                           coupling.mapping.smoothing_radius; 0 = off; default
+#                                           0 with the cgrid mesh's default mapping, else the
+#                                           configs' 2e-4). Nearest-projection needs it on the
+#                                           boundary-layer mesh to keep the tip cells valid
+#                                           (README, "The tip cells and the mapped displacement's
+#                                           kink"); on the snappy meshes hardly a foil point has a
+#                                           neighbour that close
 #   --restart                               continue an interrupted run in this folder (same
 #                                           options): finished runs are kept (a viscoelastic one
 #                                           continues when --end is later than its last level:
@@ -240,6 +246,23 @@ read -r meshKind defaultFlow defaultAlgorithm < <("$FSI_ROOT/cases/hydrofoil/too
 [ -z "$fluidMesh" ] || [ "$fluidMesh" = "$meshKind" ] ||
     die "--fluid-mesh $fluidMesh: the fluid mesh in $(dirname "$(dirname "$summary")") is $meshKind (leave --fluid-mesh out with --mesh-from or --restart)"
 fluidMesh=$meshKind
+# The interface mapping follows the fluid mesh unless given (README, "The mapping follows the
+# fluid mesh"): moving-least-squares without smoothing on the boundary-layer mesh, where the
+# fluid's sharp trailing edge lies inside the solid's blunt one; the configs' own
+# (nearest-projection, smoothing 2e-4) on the snappy mesh, whose stored references and studies
+# were made with it. --mapping alone keeps the configs' smoothing radius. A restarted run keeps
+# the mapping of its first start (file mapping, written then; runs without it used the configs').
+mapDefaultType="" mapDefaultSmoothing=""
+if [ "$restart" = 1 ] && [ -f mapping ]; then
+  read -r startedType startedSmoothing < mapping
+  [ -z "$mapType" ] || [ "$mapType" = "$startedType" ] ||
+      die "--mapping $mapType: this run started with $startedType; a --restart keeps it (leave the option out)"
+  [ -z "$mapSmoothing" ] || awk -v a="$mapSmoothing" -v b="$startedSmoothing" 'BEGIN{exit !(a + 0 == b + 0)}' ||
+      die "--mapping-smoothing $mapSmoothing: this run started with $startedSmoothing; a --restart keeps it (leave the option out)"
+  mapDefaultType=$startedType mapDefaultSmoothing=$startedSmoothing
+elif [ "$restart" = 0 ] && [ "$fluidMesh" = cgrid ] && [ -z "$mapType" ]; then
+  mapDefaultType=moving-least-squares mapDefaultSmoothing=0
+fi
 if [ -n "$solidFrom" ]; then
   # section KEY SUMMARY: KEY's value (preset, tc, cli) on a mesh summary's first line (mesh.sh's).
   # The structure's section must be this run's: t/c and C_Li against the --mesh-from mesh's
@@ -320,7 +343,15 @@ if [ -n "$initFrom" ]; then
   why=$("$FSI_ROOT/cases/hydrofoil/tools/mapInitialFields.sh" --check "$initFrom" 2>&1) ||
       die "--init-from: ${why#error: mapInitialFields.sh: }"
 fi
-[ "$checkOnly" = 0 ] || exit 0
+# the mapping this run uses: the options', the mesh's default, else the configs'
+mapUsed=${mapType:-$mapDefaultType} smoothUsed=${mapSmoothing:-$mapDefaultSmoothing}
+[ -n "$mapUsed" ] || mapUsed=$(grep -A1 '^  mapping:' solid/viscoelastic.yaml | sed -n 's/^    type: *\([a-z0-9-]*\).*/\1/p' || true)
+[ -n "$smoothUsed" ] || smoothUsed=$(sed -n 's/^    smoothing_radius: *\([0-9.eE+-]*\).*/\1/p' solid/viscoelastic.yaml | head -n 1 || true)
+smoothUsed=${smoothUsed:-0}
+if [ "$checkOnly" = 1 ]; then
+  [ -z "$mapUsed" ] || echo "run.sh: fluid mesh $fluidMesh, mapping $mapUsed, smoothing radius $smoothUsed m"
+  exit 0
+fi
 command -v fluid-app >/dev/null && command -v solid-app >/dev/null || die "fluid-app/solid-app not on PATH (build first)"
 
 run=$PWD
@@ -354,6 +385,10 @@ fi
 solidMesh=$run/mesh/solid/foil-$solidElement.msh
 [ -f "$solidMesh" ] || die "no structural mesh $solidMesh (mesh.sh makes foil-tet10.msh and foil-hex20.msh)"
 echo "$solidElement" > "$run/solid-element"
+if [ -n "$mapUsed" ]; then  # kept for a --restart
+  echo "$mapUsed $smoothUsed" > "$run/mapping"
+  log "mapping: $mapUsed, fluid-side smoothing radius $smoothUsed m"
+fi
 elementNote=""; [ "$solidElement" = tet10 ] || elementNote=", projected dilatation (B-bar)"
 log "structure: $(basename "$solidMesh")$elementNote"
 
@@ -418,8 +453,11 @@ for m in "${runs[@]}"; do
   [ -z "$fluidTol" ] || "$run/tools/setFluidTolerance.sh" "$cfg" "$fluidTol"
   setConfigNumber "$cfg" absolute_tolerance "$couplingTol"
   setConfigNumber "$cfg" band_factor "$bandFactor"
-  setConfigNumber "$cfg" smoothing_radius "$mapSmoothing"
-  [ -z "$mapType" ] || sed -i "/^  mapping:/{n;s/^    type: [a-z0-9-]*/    type: $mapType/}" "$cfg"
+  # the mapping: the options' (lines checked above), else the mesh's default where the config
+  # has the line (a config edited by hand or by scripts/bench-fsi keeps its own otherwise)
+  setConfigNumber "$cfg" smoothing_radius "${mapSmoothing:-$mapDefaultSmoothing}"
+  mapSet=${mapType:-$mapDefaultType}
+  [ -z "$mapSet" ] || sed -i "/^  mapping:/{n;s/^    type: [a-z0-9-]*/    type: $mapSet/}" "$cfg"
   if [ -n "$end" ] && [ "$m" = viscoelastic ]; then
     sed -i "s|^    end: .*|    end: $end|; s|^    hit: .*|    hit: []|" "$cfg"
   fi

@@ -31,9 +31,11 @@
 # HYDROFOIL_SOLID_ELEMENT (tet10 | hex20) and HYDROFOIL_SOLID_MESH_FROM as hydrofoil.sh: the
 # model gets -hex20, and -solid-PRESET when one structural mesh serves every level (only the fluid
 # is refined: cases/hydrofoil/README.md, "The structure's share of the coupled mesh study").
-# HYDROFOIL_MAPPING and HYDROFOIL_MAPPING_SMOOTHING as hydrofoil.sh: the model gets -mls for
-# moving-least-squares (-TYPE for another type), and -smoothR for a smoothing radius other than the
-# case's 2e-4 (cases/hydrofoil/README.md, "The trailing edge's share").
+# HYDROFOIL_MAPPING and HYDROFOIL_MAPPING_SMOOTHING as hydrofoil.sh (unset: run.sh's default on
+# this mesh, moving-least-squares with smoothing 0): the model gets -mls for moving-least-squares
+# (-TYPE for a type other than nearest-projection), and -smoothR for a smoothing radius other than
+# 2e-4 (cases/hydrofoil/README.md, "The trailing edge's share", "The mapping follows the fluid
+# mesh"); HYDROFOIL_MAPPING=nearest-projection alone gives the studies' models before 2026-12-08.
 # HYDROFOIL_SHAPE_CHECK=1: afterwards every level's accepted state is solved on to convergence
 # at its shape (cases/hydrofoil/tools/shapeCheck.sh: rigid.sh --shape-from with the rigid
 # study's stopping test: force error 1e-5 held 100 iterations, or in the mean, band 1e-4 and
@@ -65,12 +67,17 @@ if [ -n "${HYDROFOIL_SOLID_MESH_FROM:-}" ]; then
     [ -f "$solidSummary" ] || { echo "error: hydrofoil-cgrid: HYDROFOIL_SOLID_MESH_FROM: no $solidSummary (a run or mesh folder made by mesh.sh)" >&2; exit 2; }
     solidTag+=-solid-$(head -n 1 "$solidSummary" | tr ' ' '\n' | sed -n 's/^preset=//p')
 fi
-case "${HYDROFOIL_MAPPING:-nearest-projection}" in
+# the mapping run.sh uses on this mesh (its --help): unset, moving-least-squares with smoothing
+# 0; a type given keeps the configs' smoothing 2e-4 unless HYDROFOIL_MAPPING_SMOOTHING says
+# otherwise. The tags name it against the studies' first mapping (nearest-projection, 2e-4)
+mapping=${HYDROFOIL_MAPPING:-moving-least-squares}
+if [ -n "${HYDROFOIL_MAPPING:-}" ]; then smoothing=${HYDROFOIL_MAPPING_SMOOTHING:-2e-4}; else smoothing=${HYDROFOIL_MAPPING_SMOOTHING:-0}; fi
+case "$mapping" in
   nearest-projection) ;;
   moving-least-squares) solidTag+=-mls ;;
-  *) solidTag+=-$HYDROFOIL_MAPPING ;;
+  *) solidTag+=-$mapping ;;
 esac
-case "${HYDROFOIL_MAPPING_SMOOTHING:-2e-4}" in 2e-4|2.0e-4|0.0002) ;; *) solidTag+=-smooth$HYDROFOIL_MAPPING_SMOOTHING ;; esac
+awk -v r="$smoothing" 'BEGIN{exit !(r ~ /^[0-9.eE+-]+$/ && r + 0 == 2e-4)}' || solidTag+=-smooth$smoothing
 model=turbulent-$scheme-$algorithm-cgrid$suffix$solidTag-baseline
 if [ "$scheme" = linearUpwind ]; then
     export HYDROFOIL_OSCILLATION_WINDOW=${HYDROFOIL_OSCILLATION_WINDOW:-20}

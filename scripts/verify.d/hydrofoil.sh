@@ -53,9 +53,11 @@
 #                      fixed .../mesh-fine): every level's structure meshed as there (run.sh
 #                      --solid-mesh-from), so that only the fluid mesh is refined
 #   HYDROFOIL_MAPPING  T: run.sh --mapping T (the interface mapping, e.g. moving-least-squares;
-#                      default unset, the case's nearest-projection)
-#   HYDROFOIL_MAPPING_SMOOTHING  R [m]: run.sh --mapping-smoothing R (default unset, the case's
-#                      2e-4; 0 = off)
+#                      default unset, run.sh's for the fluid mesh: nearest-projection on snappy,
+#                      moving-least-squares on cgrid)
+#   HYDROFOIL_MAPPING_SMOOTHING  R [m]: run.sh --mapping-smoothing R (default unset, run.sh's:
+#                      2e-4 on snappy or with HYDROFOIL_MAPPING given, 0 with cgrid's default
+#                      mapping; 0 = off)
 #   HYDROFOIL_INIT_FROM  a path with LEVEL in it (e.g. .../turbulent-upwind-simple-LEVEL/rigid/case):
 #                      each level's fluid starts from that OpenFOAM case's solution (run.sh
 #                      --init-from), LEVEL replaced by the preset; must exist for every level

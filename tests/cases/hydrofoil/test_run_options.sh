@@ -13,7 +13,8 @@
 # that contradicts the mesh of --mesh-from) before it writes anything:
 # exit 2, one line on stderr naming the option, no mesh/ or results/ in the run folder; so is an
 # --init-from case without a reconstructed solved time. `run.sh --check-only` exits 0 on valid
-# options and writes nothing. Needs FSI_ROOT (the repository); no OpenFOAM run, no MPI.
+# options and writes nothing; it names the mapping, which follows the fluid mesh unless given and
+# which a --restart keeps (a contradicting --mapping or --mapping-smoothing refused). Needs FSI_ROOT (the repository); no OpenFOAM run, no MPI.
 # Also: tools/meshModel.sh names the default model of each mesh and preset, and
 # `scripts/run cases/hydrofoil --help` prints run.sh's options and exits 0 without setup, build
 # or a run folder. And the FSI1 runner (cases/turek-hron-fsi1/run.sh, which scripts/run also
@@ -115,6 +116,34 @@ else
     echo "ok: run.sh --check-only with valid options: exit 0, nothing written"
 fi
 check --oscillation-window 2 --check-only
+# the mapping follows the fluid mesh (README, "The mapping follows the fluid mesh"): run.sh
+# --check-only names it; a --restart keeps the one its run started with (file mapping)
+mapping() {   # mapping EXPECTED OPTIONS...: the mapping line of run.sh --check-only in $dir
+  local want=$1 got; shift
+  got=$(cd "$dir" && ./run.sh --check-only --material baseline "$@" 2> err.txt | grep -o 'mapping .*')
+  if [ "$got" = "$want" ]; then echo "ok: run.sh --check-only $* -> $got"; else echo "FAIL: run.sh --check-only $*: '$got', expected '$want'"; cat "$dir/err.txt"; fail=1; fi
+}
+mapping "mapping moving-least-squares, smoothing radius 0 m"
+mapping "mapping nearest-projection, smoothing radius 2.0e-4 m" --fluid-mesh snappy
+mapping "mapping nearest-projection, smoothing radius 2.0e-4 m" --mapping nearest-projection
+mapping "mapping moving-least-squares, smoothing radius 1e-4 m" --mapping-smoothing 1e-4
+mapping "mapping rbf-pu, smoothing radius 0 m" --fluid-mesh snappy --mapping rbf-pu --mapping-smoothing 0
+mkdir -p "$dir/mesh"
+echo "hydrofoil meshes (2026-12-08T00:00:00Z): preset=coarse tc=0.12 cli=0.5 meanline=a08 fluid-mesh=cgrid" > "$dir/mesh/mesh-summary.txt"
+echo "nearest-projection 2.0e-4" > "$dir/mapping"   # started with nearest-projection
+mapping "mapping nearest-projection, smoothing radius 2.0e-4 m" --restart
+mapping "mapping nearest-projection, smoothing radius 0.0002 m" --restart --mapping-smoothing 0.0002
+rm "$dir/mapping"                                   # a run from before the file: the configs'
+mapping "mapping nearest-projection, smoothing radius 2.0e-4 m" --restart
+echo "moving-least-squares 0" > "$dir/mapping"
+for opts in "--mapping nearest-projection" "--mapping-smoothing 2e-4"; do
+  rc=0; (cd "$dir" && ./run.sh --check-only --material baseline --restart $opts > out.txt 2> err.txt) || rc=$?
+  if [ "$rc" -eq 2 ] && [ "$(wc -l < "$dir/err.txt")" -eq 1 ] && grep -q -- "${opts%% *}.*a --restart keeps it" "$dir/err.txt"; then
+    echo "ok: --restart $opts against a run started with moving-least-squares 0 -> $(cat "$dir/err.txt")"
+  else
+    echo "FAIL: --restart $opts against a run started with moving-least-squares 0: exit $rc"; cat "$dir/err.txt"; fail=1
+  fi
+done
 # tools/meshModel.sh: the model that run.sh defaults to for each mesh (README, "The case default")
 model() {   # model EXPECTED ARGS...
   local got; got=$("$FSI_ROOT/cases/hydrofoil/tools/meshModel.sh" "${@:2}" 2>&1)
