@@ -19,7 +19,8 @@
 #   --tolerance    coupling.convergence.absolute_tolerance [m] (default: the config's, 1e-8)
 #   --mapping      override coupling.mapping.type (default: the config's rbf-thin-plate):
 #                  nearest-neighbour | rbf-thin-plate | rbf-pu | nearest-projection (onto the
-#                  beam's Quad8 faces); each with its defaults
+#                  beam's Quad8 faces) | moving-least-squares (linear fits to the beam's nodes
+#                  around each fluid point); each with its defaults
 #   --beam NX,NY   override the preset's beam cells along / across the beam (NY even)
 #   --np-fluid     fluid ranks (default 1; > 1 decomposes the fluid mesh, hierarchical)
 #   --timeout      comm timeout of both programs [s] (default by preset: coarse 600, medium 1800,
@@ -77,8 +78,8 @@ case "$material" in
   instantaneous) config=solid-instantaneous.yaml ;;
   *) echo "error: run.sh: --material must be elastic, viscoelastic or instantaneous" >&2; exit 2 ;;
 esac
-case "$mapping" in ""|nearest-neighbour|rbf-thin-plate|rbf-pu|nearest-projection) ;;
-  *) echo "error: run.sh: --mapping must be nearest-neighbour, rbf-thin-plate, rbf-pu or nearest-projection" >&2; exit 2 ;; esac
+case "$mapping" in ""|nearest-neighbour|rbf-thin-plate|rbf-pu|nearest-projection|moving-least-squares) ;;
+  *) echo "error: run.sh: --mapping must be nearest-neighbour, rbf-thin-plate, rbf-pu, nearest-projection or moving-least-squares" >&2; exit 2 ;; esac
 case "$accelerator" in ""|aitken|constant|iqn-ils) ;; *) echo "error: run.sh: --accelerator must be aitken, constant or iqn-ils" >&2; exit 2 ;; esac
 die() { echo "error: run.sh: $*" >&2; exit 2; }
 [[ "$npf" =~ ^[1-9][0-9]*$ ]] || die "--np-fluid must be a positive integer (got '$npf')"

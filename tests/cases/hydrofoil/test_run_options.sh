@@ -193,6 +193,7 @@ fsi1check 2 --np-fluid 0
 fsi1check 2 --beam 3,3
 fsi1check 2 --relaxation -1
 fsi1check 2 --mapping rbf
+fsi1check 0 --mapping moving-least-squares
 # rigid.sh and blcheck.sh (the rigid mesh studies): a bad --band-mean-tolerance refused in one
 # line naming it, exit 2, no run folder made
 fakeMesh=$work/fake-fluid-mesh
