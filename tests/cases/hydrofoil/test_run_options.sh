@@ -14,7 +14,8 @@
 # exit 2, one line on stderr naming the option, no mesh/ or results/ in the run folder; so is an
 # --init-from case without a reconstructed solved time. `run.sh --check-only` exits 0 on valid
 # options and writes nothing; it names the mapping, which follows the fluid mesh unless given and
-# which a --restart keeps (a contradicting --mapping or --mapping-smoothing refused). Needs FSI_ROOT (the repository); no OpenFOAM run, no MPI.
+# which a --restart keeps (a contradicting --mapping or --mapping-smoothing refused). Needs
+# FSI_ROOT (the repository); no OpenFOAM run, no MPI.
 # Also: tools/meshModel.sh names the default model of each mesh and preset, and
 # `scripts/run cases/hydrofoil --help` prints run.sh's options and exits 0 without setup, build
 # or a run folder. And the FSI1 runner (cases/turek-hron-fsi1/run.sh, which scripts/run also
